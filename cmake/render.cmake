@@ -1,0 +1,1 @@
+# pbf_render: see issue 4 (renderer helper fills this)

@@ -1,0 +1,1 @@
+# pbf_ros_node and pbf_node: see issue 3

@@ -1,0 +1,1 @@
+# pbf_bench, pbf_stress: see issue 5

@@ -1,0 +1,54 @@
+#pragma once
+// Fixed-radius neighbour search on a uniform grid (cell size >= search radius).
+//
+// build() counting-sorts the points by cell, with cells ranked in Morton (z-curve) order,
+// and returns the permutation so the caller can keep its particle arrays in that order:
+// neighbours in space are then neighbours in memory. findNeighbors() writes compact (CSR)
+// lists of every point within the radius: no cap, nothing silently dropped. Results do not
+// depend on the number of OpenMP threads.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+namespace pbf {
+
+class NeighborGrid {
+ public:
+  // Sorts `points` into cells of size `cell_size` covering `domain` (points outside it go
+  // to the border cells, which keeps the search exact: clamping cell coordinates never
+  // separates two cells that were adjacent). An empty domain means the points' bounds.
+  // Returns order: sorted slot k holds the point that was at index order[k].
+  const std::vector<std::uint32_t>& build(const std::vector<Eigen::Vector3f>& points,
+                                          float cell_size,
+                                          const Eigen::AlignedBox3f& domain = {});
+
+  // CSR lists for the points of the last build, given in sorted order: neighbours of i
+  // are indices()[offsets()[i] .. offsets()[i+1]), excluding i, every j with
+  // |p_i - p_j| < radius, in ascending j. Requires radius <= cell_size.
+  void findNeighbors(const std::vector<Eigen::Vector3f>& sorted_points, float radius);
+
+  const std::vector<std::uint32_t>& offsets() const { return offsets_; }
+  const std::vector<std::uint32_t>& indices() const { return indices_; }
+  std::size_t cellCount() const { return rank_.size(); }
+
+  // Interleaves the low 21 bits of x, y, z (x in the lowest bit).
+  static std::uint64_t morton3(std::uint32_t x, std::uint32_t y, std::uint32_t z);
+
+ private:
+  Eigen::Vector3i cellOf(const Eigen::Vector3f& p) const;
+  void rankCellsInMortonOrder();
+
+  float cell_size_ = 1.0f;
+  Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();
+  Eigen::Vector3i dims_ = Eigen::Vector3i::Zero();
+  std::vector<std::uint32_t> rank_;        // dense cell index -> Morton rank (cached per dims)
+  std::vector<std::uint32_t> cell_start_;  // by rank, size cells + 1: first sorted point
+  std::vector<std::uint32_t> point_cell_;  // dense cell index of each sorted point
+  std::vector<std::uint32_t> order_;
+  std::vector<std::uint32_t> offsets_, indices_;
+  std::vector<std::uint32_t> unsorted_cell_;  // scratch
+};
+
+}  // namespace pbf

@@ -1,0 +1,106 @@
+#pragma once
+// The Position Based Fluids solver (Macklin & Mueller 2013, the seed report's algorithm),
+// with the additions our users need: unilateral constraint, vorticity confinement,
+// tolerance-driven iterations, CFL time step, neighbour-list reuse and NaN rejection.
+//
+// Particles are kept sorted by grid cell (Morton order); ids() maps each slot back to the
+// index the particle had when it was set, so callers can follow individual particles.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "pbf_ros/core/SolverParams.h"
+#include "pbf_ros/core/StepStats.h"
+
+namespace pbf {
+
+class NeighborGrid;
+
+class PbfSolver {
+ public:
+  PbfSolver();
+  ~PbfSolver();
+  PbfSolver(const PbfSolver&) = delete;
+  PbfSolver& operator=(const PbfSolver&) = delete;
+
+  // Throws std::invalid_argument (naming the field) for unusable parameters; the solver
+  // keeps its previous parameters then. Changing spacing/rest density rescales mass only:
+  // particles stay where they are.
+  void setParams(const SolverParams& params);
+  const SolverParams& params() const { return params_; }
+
+  // Axis-aligned container in the fluid frame; particles are kept inside.
+  void setContainer(const Eigen::AlignedBox3f& box);
+  const Eigen::AlignedBox3f& container() const { return container_; }
+
+  // Replaces all particles. Velocities may be empty (zero). Non-finite input throws.
+  void setParticles(const std::vector<Eigen::Vector3f>& positions,
+                    const std::vector<Eigen::Vector3f>& velocities = {});
+
+  // One step with the time step the parameters ask for (fixed or CFL). Never leaves
+  // non-finite values in the state: a failed attempt is retried with half the dt.
+  StepStats step();
+
+  // Steps until exactly `duration` seconds are simulated (the last step is shortened).
+  // Returns the stats of every step taken.
+  std::vector<StepStats> advance(double duration);
+
+  std::size_t size() const { return position_.size(); }
+  const std::vector<Eigen::Vector3f>& positions() const { return position_; }
+  const std::vector<Eigen::Vector3f>& velocities() const { return velocity_; }
+  const std::vector<float>& densities() const { return density_; }  // after the last step
+  const std::vector<std::uint32_t>& ids() const { return id_; }
+  // Neighbour count (within h) of each particle at the last density evaluation; small
+  // counts mark surface particles (the renderer draws only those if it wants).
+  const std::vector<std::uint16_t>& neighborCounts() const { return neighbor_count_; }
+  double time() const { return time_; }
+  std::uint64_t stepCount() const { return step_count_; }
+
+  // The dt the next step() would take (fixed, or CFL from the current velocities).
+  float nextTimeStep() const;
+
+ private:
+  bool attemptStep(float dt, StepStats& stats);
+  void predict(float dt);
+  void updateNeighbors(StepStats& stats);
+  void computeLambdas(float& avg_error);
+  void computeDeltas();
+  void applyDeltasAndBoundary();
+  void updateVelocities(float dt);
+  void computeDensityAndVorticity();
+  void applyViscosityAndVorticity(float dt);
+  void enforceSpeedLimit(float dt, StepStats& stats);
+  bool stateIsFinite() const;
+  void gatherStats(StepStats& stats) const;
+  void reorder(const std::vector<std::uint32_t>& order);
+  float maxSpeedCap() const;
+
+  SolverParams params_;
+  Eigen::AlignedBox3f container_{Eigen::Vector3f(-1, -1, -1), Eigen::Vector3f(1, 1, 1)};
+
+  // Particle state, all in grid (Morton) order.
+  std::vector<Eigen::Vector3f> position_;    // x, at the start/end of a step
+  std::vector<Eigen::Vector3f> velocity_;
+  std::vector<std::uint32_t> id_;
+  // Per-step scratch, Jacobi style: each pass reads one array and writes another.
+  std::vector<Eigen::Vector3f> predicted_;   // x*
+  std::vector<Eigen::Vector3f> delta_;       // delta p
+  std::vector<Eigen::Vector3f> new_velocity_;
+  std::vector<Eigen::Vector3f> vorticity_;
+  std::vector<Eigen::Vector3f> build_position_;  // positions at the last list build (skin)
+  std::vector<float> lambda_;
+  std::vector<float> density_;
+  std::vector<std::uint16_t> neighbor_count_;
+  // Backups to reject a non-finite step.
+  std::vector<Eigen::Vector3f> saved_position_, saved_velocity_;
+
+  std::unique_ptr<NeighborGrid> grid_;
+  bool lists_valid_ = false;
+  double time_ = 0.0;
+  std::uint64_t step_count_ = 0;
+};
+
+}  // namespace pbf

@@ -1,0 +1,67 @@
+#pragma once
+// A scene: the container, the fluid it starts with, and the solver settings it wants.
+// Scenes are YAML files (config/scenes/*.yaml); see config/scenes/dam_break.yaml for the
+// documented format.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pbf_ros/core/SolverParams.h"
+
+namespace pbf {
+
+// Thrown for a scene that cannot be used. what() names the file, the key and what was
+// expected, e.g. "dam_break.yaml: key 'fluid[0].max': expected a list of 3 numbers".
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct FluidBlock {
+  enum class Shape { Box, Sphere };
+  Shape shape = Shape::Box;
+  Eigen::Vector3f min = Eigen::Vector3f::Zero();   // Box
+  Eigen::Vector3f max = Eigen::Vector3f::Zero();   // Box
+  Eigen::Vector3f center = Eigen::Vector3f::Zero();  // Sphere
+  float radius = 0.0f;                             // Sphere
+  Eigen::Vector3f velocity = Eigen::Vector3f::Zero();  // initial velocity [m/s]
+};
+
+struct Scene {
+  std::string name;
+  std::string source;                   // file it came from ("" when built in code)
+  Eigen::AlignedBox3f container;        // in the fluid_domain frame [m]
+  std::vector<FluidBlock> fluid;
+  SolverParams solver;                  // defaults overridden by the file's 'solver:' map
+  // Pose of fluid_domain in world (the static tf world -> fluid_domain).
+  Eigen::Vector3f domain_translation = Eigen::Vector3f::Zero();
+  Eigen::Vector3f domain_rpy = Eigen::Vector3f::Zero();  // roll, pitch, yaw [rad]
+
+  // Particles on a cubic lattice of spacing solver.particle_spacing filling every block,
+  // cell-centred (first layer at d/2 from a block's face). Overlaps are filled once.
+  void initialParticles(std::vector<Eigen::Vector3f>& positions,
+                        std::vector<Eigen::Vector3f>& velocities) const;
+
+  // Empty when usable; otherwise what is wrong (container, blocks outside it, solver).
+  std::string validate() const;
+};
+
+// Parses a scene file. Throws SceneError (file, key, expectation) for anything wrong.
+Scene loadSceneFile(const std::string& path);
+
+// Parses YAML text; 'origin' names it in error messages.
+Scene loadSceneString(const std::string& yaml_text, const std::string& origin);
+
+// Applies the keys of a YAML 'solver:' map onto params (shared with parameter files).
+// Unknown keys and wrong types throw SceneError naming origin and key.
+void applySolverYaml(const std::string& yaml_text, const std::string& origin,
+                     SolverParams& params);
+
+// "dam_break" -> "<scenes_dir>/dam_break.yaml"; a path with '/' or ending in .yaml is
+// used as is. Throws SceneError when the file does not exist, listing the known scenes.
+std::string resolveScenePath(const std::string& name_or_path, const std::string& scenes_dir);
+
+}  // namespace pbf

@@ -1,0 +1,65 @@
+#pragma once
+// Every tunable of the PBF solver, in SI units. Plain data: the ROS layer fills it from
+// parameters / dynamic_reconfigure, tools and tests fill it directly.
+
+#include <Eigen/Core>
+#include <string>
+
+namespace pbf {
+
+struct SolverParams {
+  // --- fluid ---------------------------------------------------------------------------
+  float rest_density = 1000.0f;        // rho0 [kg/m^3]
+  float particle_spacing = 0.02f;      // d [m]: initial lattice spacing, "particle diameter"
+  float support_radius_factor = 2.0f;  // h = factor * d (2 -> about 33 neighbours)
+  Eigen::Vector3f gravity{0.0f, 0.0f, -9.81f};  // [m/s^2], z up (REP 103)
+
+  // --- time stepping -------------------------------------------------------------------
+  float time_step = 1.0f / 120.0f;     // dt when adaptive stepping is off [s]
+  bool adaptive_time_step = true;      // CFL-limited dt in [min_time_step, max_time_step]
+  float cfl_factor = 0.4f;             // max displacement per step as a fraction of d
+  float min_time_step = 1.0e-5f;       // [s]
+  float max_time_step = 1.0f / 120.0f; // [s]
+
+  // --- constraint solve ----------------------------------------------------------------
+  int min_iterations = 2;
+  int max_iterations = 4;
+  // Stop iterating once the average density error is below this (after min_iterations).
+  // 0 means a fixed count: always max_iterations.
+  float density_tolerance = 0.0f;
+  // Constraint force mixing epsilon of eq 6 [1/m^2]. Regularises lambda where the
+  // gradient sum vanishes (isolated particles).
+  float cfm_epsilon = 100.0f;
+  // C = max(rho/rho0 - 1, 0): only compression is corrected, so surface particles with
+  // missing neighbours are not pulled together (no clumping). Off: the seed's C = rho/rho0 - 1.
+  bool unilateral_constraint = true;
+  // Artificial pressure s_corr of eq 11 (Monaghan 2000). k = 0 disables it at no cost.
+  float scorr_k = 0.0f;
+  float scorr_n = 4.0f;
+  float scorr_delta_q = 0.2f;          // |dq| as a fraction of h
+
+  // --- velocity post-processing --------------------------------------------------------
+  float xsph_c = 0.01f;                // XSPH viscosity (eq 10); 0 disables it at no cost
+  float vorticity_epsilon = 0.0f;      // vorticity confinement; 0 disables it at no cost
+
+  // --- neighbour search ----------------------------------------------------------------
+  // Lists are built with radius h * (1 + skin) and reused while every particle moved less
+  // than half the skin margin since the build. 0 rebuilds every step.
+  float neighbor_skin = 0.0f;
+
+  // --- robustness ----------------------------------------------------------------------
+  int max_nan_retries = 6;             // halvings of dt before a step is given up
+  // Hard cap on particle speed, as a multiple of the free-fall speed across the container
+  // (sqrt(2 |g| L)). Only hostile settings reach it; it bounds kinetic energy. 0 = none.
+  float max_speed_factor = 4.0f;
+
+  float supportRadius() const { return support_radius_factor * particle_spacing; }
+  float particleMass() const {
+    return rest_density * particle_spacing * particle_spacing * particle_spacing;
+  }
+
+  // Empty when every value is usable; otherwise a message naming the first bad field.
+  std::string validate() const;
+};
+
+}  // namespace pbf

@@ -1,0 +1,34 @@
+#pragma once
+// What one solver step did and what it cost: the solver's answer to "what happened?".
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pbf {
+
+struct StageTimes {
+  double neighbors_ms = 0.0;             // grid, sort, neighbour lists
+  double solve_ms = 0.0;                 // constraint iterations (lambda, delta p, boundary)
+  double viscosity_vorticity_ms = 0.0;   // final density, XSPH, vorticity confinement
+  double other_ms = 0.0;                 // prediction, velocity update, statistics, guards
+  double total_ms = 0.0;
+};
+
+struct StepStats {
+  std::uint32_t particle_count = 0;
+  double dt = 0.0;                       // time step actually taken [s]
+  int iterations = 0;                    // constraint iterations used
+  double avg_density_error = 0.0;        // mean of max(rho/rho0 - 1, 0) after the step
+  double max_density_error = 0.0;        // max of rho/rho0 - 1 after the step
+  double max_speed = 0.0;                // [m/s]
+  double kinetic_energy = 0.0;           // [J]
+  int nan_retries = 0;                   // rejected attempts (non-finite values) this step
+  bool failed = false;                   // no attempt succeeded: state left unchanged
+  bool neighbor_lists_reused = false;
+  bool speed_limited = false;            // the max_speed_factor cap acted this step
+  StageTimes times;
+  std::vector<std::string> skipped_stages;  // e.g. "vorticity", "xsph", "scorr"
+};
+
+}  // namespace pbf

@@ -1,0 +1,169 @@
+#include "pbf_ros/core/NeighborGrid.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+namespace pbf {
+
+std::uint64_t NeighborGrid::morton3(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  auto spread = [](std::uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  return spread(x) | (spread(y) << 1) | (spread(z) << 2);
+}
+
+Eigen::Vector3i NeighborGrid::cellOf(const Eigen::Vector3f& p) const {
+  Eigen::Vector3i c;
+  for (int a = 0; a < 3; ++a) {
+    // Clamp in float first: a far-away (or huge) coordinate must not overflow the int.
+    const float f = std::floor((p[a] - origin_[a]) / cell_size_);
+    c[a] = static_cast<int>(std::clamp(f, 0.0f, static_cast<float>(dims_[a] - 1)));
+  }
+  return c;
+}
+
+void NeighborGrid::rankCellsInMortonOrder() {
+  const std::size_t n = static_cast<std::size_t>(dims_.prod());
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> codes(n);
+  for (int z = 0; z < dims_.z(); ++z)
+    for (int y = 0; y < dims_.y(); ++y)
+      for (int x = 0; x < dims_.x(); ++x) {
+        const std::uint32_t dense = x + dims_.x() * (y + dims_.y() * z);
+        codes[dense] = {morton3(x, y, z), dense};
+      }
+  std::sort(codes.begin(), codes.end());
+  rank_.resize(n);
+  for (std::uint32_t r = 0; r < n; ++r) rank_[codes[r].second] = r;
+}
+
+const std::vector<std::uint32_t>& NeighborGrid::build(const std::vector<Eigen::Vector3f>& points,
+                                                      float cell_size,
+                                                      const Eigen::AlignedBox3f& domain) {
+  if (!(cell_size > 0.0f)) throw std::invalid_argument("NeighborGrid: cell_size must be > 0");
+  const std::size_t n = points.size();
+  Eigen::AlignedBox3f box = domain;
+  if (box.isEmpty()) {
+    for (const auto& p : points) box.extend(p);
+    if (box.isEmpty()) box = Eigen::AlignedBox3f(Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero());
+  }
+  // Cap the grid at ~2^21 cells per axis and 64M cells in all: beyond that a degenerate
+  // cloud (one point far away) would make the dense rank table explode; coarser cells stay
+  // exact, only slower.
+  float cs = cell_size;
+  Eigen::Vector3f extent = box.sizes().cwiseMax(0.0f);
+  auto dimsFor = [&](float s) {
+    return Eigen::Vector3i((extent / s).array().floor().cast<int>() + 1);
+  };
+  while (dimsFor(cs).cast<double>().prod() > 64.0e6) cs *= 2.0f;
+
+  const Eigen::Vector3i dims = dimsFor(cs);
+  origin_ = box.min();
+  if (dims != dims_ || rank_.empty()) {
+    dims_ = dims;
+    rankCellsInMortonOrder();
+  }
+  cell_size_ = cs;
+  const std::size_t cells = rank_.size();
+
+  // Counting sort by Morton rank of the cell. Serial count and scatter keep it stable, so
+  // the order only depends on the input, never on the thread count.
+  unsorted_cell_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3i c = cellOf(points[i]);
+    unsorted_cell_[i] = c.x() + dims_.x() * (c.y() + dims_.y() * c.z());
+  }
+  cell_start_.assign(cells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[rank_[unsorted_cell_[i]] + 1];
+  std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
+  order_.resize(n);
+  point_cell_.resize(n);
+  {
+    std::vector<std::uint32_t> next(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t dense = unsorted_cell_[i];
+      const std::uint32_t slot = next[rank_[dense]]++;
+      order_[slot] = static_cast<std::uint32_t>(i);
+      point_cell_[slot] = dense;
+    }
+  }
+  return order_;
+}
+
+void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float radius) {
+  const std::size_t n = pts.size();
+  if (n != order_.size()) throw std::invalid_argument("NeighborGrid: points differ from build");
+  if (radius > cell_size_ * 1.0001f)
+    throw std::invalid_argument("NeighborGrid: radius larger than the cell size");
+  const float r2 = radius * radius;
+  const int nx = dims_.x(), ny = dims_.y(), nz = dims_.z();
+  struct Range { std::uint32_t begin, end; };
+
+  // Each thread fills the lists of one contiguous block of particles into its own buffer;
+  // the buffers are then concatenated in block order, so the CSR arrays are identical for
+  // any thread count.
+  offsets_.resize(n + 1);
+  std::vector<std::vector<std::uint32_t>> buffers;
+  std::vector<std::size_t> block_base;
+
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num();
+    const int nt = omp_get_num_threads();
+#pragma omp single
+    {
+      buffers.resize(nt);
+      block_base.assign(nt + 1, 0);
+    }
+    const std::size_t begin = n * t / nt, end = n * (t + 1) / nt;
+    auto& buf = buffers[t];
+    buf.reserve((end - begin) * 40);
+    Range ranges[27];
+    std::uint32_t last_cell = UINT32_MAX;
+    int range_count = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t dense = point_cell_[i];
+      if (dense != last_cell) {  // sorted by cell: the 27 ranges change once per cell
+        last_cell = dense;
+        const int cx = dense % nx, cy = (dense / nx) % ny, cz = dense / (nx * ny);
+        range_count = 0;
+        for (int z = std::max(cz - 1, 0); z <= std::min(cz + 1, nz - 1); ++z)
+          for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny - 1); ++y)
+            for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx - 1); ++x) {
+              const std::uint32_t r = rank_[x + nx * (y + ny * z)];
+              if (cell_start_[r] != cell_start_[r + 1])
+                ranges[range_count++] = {cell_start_[r], cell_start_[r + 1]};
+            }
+        // Ascending neighbour order: deterministic, and friendlier to the cache.
+        std::sort(ranges, ranges + range_count,
+                  [](const Range& a, const Range& b) { return a.begin < b.begin; });
+      }
+      offsets_[i] = static_cast<std::uint32_t>(buf.size());  // block-local until the merge
+      const Eigen::Vector3f pi = pts[i];
+      for (int k = 0; k < range_count; ++k)
+        for (std::uint32_t j = ranges[k].begin; j < ranges[k].end; ++j)
+          if (j != i && (pts[j] - pi).squaredNorm() < r2) buf.push_back(j);
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      for (int b = 0; b < nt; ++b) block_base[b + 1] = block_base[b] + buffers[b].size();
+      indices_.resize(block_base[nt]);
+      offsets_[n] = static_cast<std::uint32_t>(block_base[nt]);
+    }
+    std::copy(buf.begin(), buf.end(), indices_.begin() + block_base[t]);
+    const auto base = static_cast<std::uint32_t>(block_base[t]);
+    for (std::size_t i = begin; i < end; ++i) offsets_[i] += base;
+  }
+}
+
+}  // namespace pbf
