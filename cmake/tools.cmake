@@ -1,1 +1,10 @@
-# pbf_bench, pbf_stress: see issue 5
+# Command-line tools on the ROS-free core.
+add_executable(pbf_run src/tools/run_scene.cpp)
+target_link_libraries(pbf_run pbf_core)
+target_compile_definitions(pbf_run PRIVATE PBF_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+
+# Google Benchmark of one step (README performance table).
+find_package(benchmark REQUIRED)
+add_executable(pbf_step_benchmark src/tools/step_benchmark.cpp)
+target_link_libraries(pbf_step_benchmark pbf_core benchmark::benchmark)
+target_compile_definitions(pbf_step_benchmark PRIVATE PBF_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")

@@ -127,31 +127,54 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
     const std::size_t begin = n * t / nt, end = n * (t + 1) / nt;
     auto& buf = buffers[t];
     buf.reserve((end - begin) * 40);
-    Range ranges[27];
-    std::uint32_t last_cell = UINT32_MAX;
-    int range_count = 0;
-    for (std::size_t i = begin; i < end; ++i) {
+    // All particles of a cell share their 27-cell candidate set: gather it once per cell
+    // into a contiguous local copy (ascending index), then test every particle of the cell
+    // against it with a branch-free loop.
+    std::vector<std::uint32_t> cand;
+    std::vector<float> cx, cy, cz;
+    std::size_t i = begin;
+    while (i < end) {
       const std::uint32_t dense = point_cell_[i];
-      if (dense != last_cell) {  // sorted by cell: the 27 ranges change once per cell
-        last_cell = dense;
-        const int cx = dense % nx, cy = (dense / nx) % ny, cz = dense / (nx * ny);
-        range_count = 0;
-        for (int z = std::max(cz - 1, 0); z <= std::min(cz + 1, nz - 1); ++z)
-          for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny - 1); ++y)
-            for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx - 1); ++x) {
-              const std::uint32_t r = rank_[x + nx * (y + ny * z)];
-              if (cell_start_[r] != cell_start_[r + 1])
-                ranges[range_count++] = {cell_start_[r], cell_start_[r + 1]};
-            }
-        // Ascending neighbour order: deterministic, and friendlier to the cache.
-        std::sort(ranges, ranges + range_count,
-                  [](const Range& a, const Range& b) { return a.begin < b.begin; });
-      }
-      offsets_[i] = static_cast<std::uint32_t>(buf.size());  // block-local until the merge
-      const Eigen::Vector3f pi = pts[i];
+      std::size_t cell_end = i + 1;
+      while (cell_end < end && point_cell_[cell_end] == dense) ++cell_end;
+      const int x0 = dense % nx, y0 = (dense / nx) % ny, z0 = dense / (nx * ny);
+      Range ranges[27];
+      int range_count = 0;
+      for (int z = std::max(z0 - 1, 0); z <= std::min(z0 + 1, nz - 1); ++z)
+        for (int y = std::max(y0 - 1, 0); y <= std::min(y0 + 1, ny - 1); ++y)
+          for (int x = std::max(x0 - 1, 0); x <= std::min(x0 + 1, nx - 1); ++x) {
+            const std::uint32_t r = rank_[x + nx * (y + ny * z)];
+            if (cell_start_[r] != cell_start_[r + 1])
+              ranges[range_count++] = {cell_start_[r], cell_start_[r + 1]};
+          }
+      std::sort(ranges, ranges + range_count,
+                [](const Range& a, const Range& b) { return a.begin < b.begin; });
+      cand.clear();
       for (int k = 0; k < range_count; ++k)
-        for (std::uint32_t j = ranges[k].begin; j < ranges[k].end; ++j)
-          if (j != i && (pts[j] - pi).squaredNorm() < r2) buf.push_back(j);
+        for (std::uint32_t j = ranges[k].begin; j < ranges[k].end; ++j) cand.push_back(j);
+      const std::size_t m = cand.size();
+      cx.resize(m);
+      cy.resize(m);
+      cz.resize(m);
+      for (std::size_t c = 0; c < m; ++c) {
+        const Eigen::Vector3f& q = pts[cand[c]];
+        cx[c] = q.x();
+        cy[c] = q.y();
+        cz[c] = q.z();
+      }
+      for (; i < cell_end; ++i) {
+        offsets_[i] = static_cast<std::uint32_t>(buf.size());  // block-local until the merge
+        const float xi = pts[i].x(), yi = pts[i].y(), zi = pts[i].z();
+        std::size_t pos = buf.size();
+        buf.resize(pos + m);
+        std::uint32_t* out = buf.data();
+        for (std::size_t c = 0; c < m; ++c) {
+          const float dx = cx[c] - xi, dy = cy[c] - yi, dz = cz[c] - zi;
+          out[pos] = cand[c];
+          pos += (dx * dx + dy * dy + dz * dz < r2) & (cand[c] != i);
+        }
+        buf.resize(pos);
+      }
     }
 #pragma omp barrier
 #pragma omp single

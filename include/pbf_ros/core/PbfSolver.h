@@ -44,6 +44,9 @@ class PbfSolver {
   // non-finite values in the state: a failed attempt is retried with half the dt.
   StepStats step();
 
+  // One step of exactly dt (still halved on a non-finite result). dt must be > 0.
+  StepStats stepWith(float dt);
+
   // Steps until exactly `duration` seconds are simulated (the last step is shortened).
   // Returns the stats of every step taken.
   std::vector<StepStats> advance(double duration);
@@ -68,6 +71,7 @@ class PbfSolver {
   void updateNeighbors(StepStats& stats);
   void computeLambdas(float& avg_error);
   void computeDeltas();
+  Eigen::Vector3f pairGradient(std::size_t i, std::uint32_t j) const;  // grad_i W, exact path
   void applyDeltasAndBoundary();
   void updateVelocities(float dt);
   void computeDensityAndVorticity();
@@ -96,6 +100,7 @@ class PbfSolver {
   std::vector<std::uint16_t> neighbor_count_;
   // Backups to reject a non-finite step.
   std::vector<Eigen::Vector3f> saved_position_, saved_velocity_;
+  std::vector<std::uint32_t> saved_id_;
 
   std::unique_ptr<NeighborGrid> grid_;
   bool lists_valid_ = false;

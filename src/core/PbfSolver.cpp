@@ -1,0 +1,612 @@
+#include "pbf_ros/core/PbfSolver.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "pbf_ros/core/Kernels.h"
+#include "pbf_ros/core/NeighborGrid.h"
+
+namespace pbf {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Sum of f(i) over [0, n) in a fixed association order: chunks of fixed size summed in
+// parallel, then the chunk sums in order. Results are bitwise identical for any thread
+// count, which keeps tolerance-driven iteration counts independent of the threads.
+template <typename F>
+double deterministicSum(std::size_t n, F f) {
+  constexpr std::size_t kChunk = 2048;
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<double> partial(chunks, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    double s = 0.0;
+    const std::size_t end = std::min(n, (c + 1) * kChunk);
+    for (std::size_t i = c * kChunk; i < end; ++i) s += f(i);
+    partial[c] = s;
+  }
+  double total = 0.0;
+  for (double s : partial) total += s;
+  return total;
+}
+
+// Direction for a pair of coincident particles, which has no geometric direction: a
+// pseudo-random unit vector from the pair's ids, antisymmetric (dir(a,b) = -dir(b,a)) so
+// momentum is still conserved and coincident particles push apart deterministically.
+Eigen::Vector3f coincidentDirection(std::uint32_t id_i, std::uint32_t id_j) {
+  const std::uint32_t lo = std::min(id_i, id_j), hi = std::max(id_i, id_j);
+  std::uint64_t s = (static_cast<std::uint64_t>(lo) << 32 | hi) * 0x9E3779B97F4A7C15ULL;
+  auto next = [&s]() {
+    s ^= s >> 31;
+    s *= 0xBF58476D1CE4E5B9ULL;
+    s ^= s >> 29;
+    return static_cast<float>(s >> 40) / static_cast<float>(1 << 24) * 2.0f - 1.0f;
+  };
+  Eigen::Vector3f d(next(), next(), next());
+  if (d.squaredNorm() < 1e-6f) d = Eigen::Vector3f(1, 0, 0);
+  d.normalize();
+  return id_i < id_j ? d : Eigen::Vector3f(-d);
+}
+
+// Pair geometry shared by every pass: r = p_i - p_j, its length, and the Spiky gradient
+// grad_i W(r). Coincident pairs get the kernel's finite limit along coincidentDirection.
+struct Pair {
+  Eigen::Vector3f r;
+  float r2;
+  float rlen;
+};
+
+// Pairs closer than sqrt(kCoincident) h are treated as coincident.
+constexpr float kCoincident = 1e-12f;
+
+inline Eigen::Vector3f spikyGradientSafe(const Kernels& k, const Pair& p, std::uint32_t id_i,
+                                         std::uint32_t id_j) {
+  if (p.r2 > kCoincident * k.h2) return k.spikyGradient(p.r, p.rlen);
+  return (k.spiky_grad_coef * k.h2) * coincidentDirection(id_i, id_j);
+}
+
+}  // namespace
+
+PbfSolver::PbfSolver() : grid_(std::make_unique<NeighborGrid>()) {}
+PbfSolver::~PbfSolver() = default;
+
+void PbfSolver::setParams(const SolverParams& params) {
+  const std::string err = params.validate();
+  if (!err.empty()) throw std::invalid_argument("solver parameter: " + err);
+  const bool radius_changed = params.supportRadius() != params_.supportRadius() ||
+                              params.neighbor_skin != params_.neighbor_skin;
+  params_ = params;
+  if (radius_changed) lists_valid_ = false;
+}
+
+void PbfSolver::setContainer(const Eigen::AlignedBox3f& box) {
+  if (!box.isEmpty() && !(box.min().allFinite() && box.max().allFinite()))
+    throw std::invalid_argument("container: corners must be finite");
+  container_ = box;
+}
+
+void PbfSolver::setParticles(const std::vector<Eigen::Vector3f>& positions,
+                             const std::vector<Eigen::Vector3f>& velocities) {
+  if (!velocities.empty() && velocities.size() != positions.size())
+    throw std::invalid_argument("setParticles: velocities must be empty or match positions (" +
+                                std::to_string(velocities.size()) + " vs " +
+                                std::to_string(positions.size()) + ")");
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    if (!positions[i].allFinite() || (!velocities.empty() && !velocities[i].allFinite()))
+      throw std::invalid_argument("setParticles: particle " + std::to_string(i) +
+                                  " has a non-finite position or velocity");
+  const std::size_t n = positions.size();
+  position_ = positions;
+  velocity_ = velocities.empty() ? std::vector<Eigen::Vector3f>(n, Eigen::Vector3f::Zero())
+                                 : velocities;
+  id_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) id_[i] = static_cast<std::uint32_t>(i);
+  predicted_.assign(n, Eigen::Vector3f::Zero());
+  delta_.assign(n, Eigen::Vector3f::Zero());
+  new_velocity_.assign(n, Eigen::Vector3f::Zero());
+  lambda_.assign(n, 0.0f);
+  density_.assign(n, params_.rest_density);
+  neighbor_count_.assign(n, 0);
+  lists_valid_ = false;
+  time_ = 0.0;
+  step_count_ = 0;
+}
+
+float PbfSolver::maxSpeedCap() const {
+  if (params_.max_speed_factor <= 0.0f || container_.isEmpty()) return 0.0f;
+  const float g = std::max(params_.gravity.norm(), 9.81f);
+  const float l = container_.sizes().maxCoeff();
+  return params_.max_speed_factor * std::sqrt(2.0f * g * l);
+}
+
+float PbfSolver::nextTimeStep() const {
+  if (!params_.adaptive_time_step) return params_.time_step;
+  float vmax2 = 0.0f;
+#pragma omp parallel for reduction(max : vmax2) schedule(static)
+  for (std::size_t i = 0; i < velocity_.size(); ++i) vmax2 = std::max(vmax2, velocity_[i].squaredNorm());
+  // Gravity adds up to |g| dt within the step; include it so a resting fluid that starts
+  // to fall does not take one over-long step.
+  const float vmax = std::sqrt(vmax2) + params_.gravity.norm() * params_.max_time_step;
+  float dt = params_.max_time_step;
+  if (vmax > 0.0f) dt = params_.cfl_factor * params_.particle_spacing / vmax;
+  return std::clamp(dt, params_.min_time_step, params_.max_time_step);
+}
+
+StepStats PbfSolver::step() { return stepWith(nextTimeStep()); }
+
+StepStats PbfSolver::stepWith(float dt) {
+  const auto t0 = Clock::now();
+  StepStats stats;
+  stats.particle_count = static_cast<std::uint32_t>(size());
+  if (!(std::isfinite(dt) && dt > 0.0f))
+    throw std::invalid_argument("step: time step must be finite and > 0");
+
+  saved_position_ = position_;
+  saved_velocity_ = velocity_;
+  saved_id_ = id_;
+  bool ok = false;
+  for (int attempt = 0; attempt <= params_.max_nan_retries; ++attempt) {
+    StepStats trial = stats;
+    if (attemptStep(dt, trial)) {
+      stats = trial;
+      ok = true;
+      break;
+    }
+    // Rejected: a non-finite value appeared. Restore and retry with half the step.
+    position_ = saved_position_;
+    velocity_ = saved_velocity_;
+    id_ = saved_id_;
+    lists_valid_ = false;
+    ++stats.nan_retries;
+    dt *= 0.5f;
+  }
+  if (!ok) {
+    stats.failed = true;
+    stats.dt = 0.0;
+    gatherStats(stats);
+  } else {
+    time_ += stats.dt;
+    ++step_count_;
+  }
+  stats.times.total_ms = msSince(t0);
+  stats.times.other_ms = std::max(0.0, stats.times.total_ms - stats.times.neighbors_ms -
+                                           stats.times.solve_ms -
+                                           stats.times.viscosity_vorticity_ms);
+  return stats;
+}
+
+std::vector<StepStats> PbfSolver::advance(double duration) {
+  std::vector<StepStats> all;
+  double remaining = duration;
+  while (remaining > 1e-9) {
+    // Split what is left evenly instead of ending on a sliver of a step: a tiny dt turns
+    // round-off in positions into large velocities.
+    const double dt_next = nextTimeStep();
+    const double steps = std::ceil(remaining / dt_next - 1e-6);
+    const float dt = static_cast<float>(remaining / std::max(1.0, steps));
+    all.push_back(stepWith(dt));
+    if (all.back().failed) break;
+    remaining -= all.back().dt;
+  }
+  return all;
+}
+
+bool PbfSolver::attemptStep(float dt, StepStats& stats) {
+  stats.dt = dt;
+  auto t = Clock::now();
+  predict(dt);
+  stats.times.other_ms += msSince(t);
+
+  t = Clock::now();
+  updateNeighbors(stats);
+  stats.times.neighbors_ms += msSince(t);
+
+  // Constraint iterations. With a tolerance, the error measured by the lambda pass
+  // decides whether another correction is needed; the last pass is not wasted.
+  t = Clock::now();
+  const bool use_tolerance = params_.density_tolerance > 0.0f;
+  int iter = 0;
+  while (iter < params_.max_iterations) {
+    float avg_error = 0.0f;
+    computeLambdas(avg_error);
+    if (!std::isfinite(avg_error)) return false;
+    if (use_tolerance && iter >= params_.min_iterations && avg_error <= params_.density_tolerance)
+      break;
+    computeDeltas();
+    applyDeltasAndBoundary();
+    ++iter;
+  }
+  stats.iterations = iter;
+  stats.times.solve_ms += msSince(t);
+
+  t = Clock::now();
+  updateVelocities(dt);
+  stats.times.other_ms += msSince(t);
+
+  t = Clock::now();
+  computeDensityAndVorticity();
+  if (params_.xsph_c > 0.0f || params_.vorticity_epsilon > 0.0f) applyViscosityAndVorticity(dt);
+  stats.times.viscosity_vorticity_ms += msSince(t);
+
+  t = Clock::now();
+  enforceSpeedLimit(dt, stats);
+  if (params_.vorticity_epsilon <= 0.0f) stats.skipped_stages.push_back("vorticity");
+  if (params_.xsph_c <= 0.0f) stats.skipped_stages.push_back("xsph");
+  if (params_.scorr_k <= 0.0f) stats.skipped_stages.push_back("scorr");
+  if (stats.neighbor_lists_reused) stats.skipped_stages.push_back("neighbor_search");
+  if (use_tolerance && stats.iterations < params_.max_iterations)
+    stats.skipped_stages.push_back("iterations_after_tolerance");
+  const bool finite = stateIsFinite();
+  if (finite) gatherStats(stats);
+  stats.times.other_ms += msSince(t);
+  return finite;
+}
+
+void PbfSolver::predict(float dt) {
+  const std::size_t n = size();
+  const Eigen::Vector3f dv = dt * params_.gravity;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    velocity_[i] += dv;
+    predicted_[i] = position_[i] + dt * velocity_[i];
+  }
+}
+
+void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
+  const std::size_t n = order.size();
+  auto permute = [&](auto& v) {
+    using V = std::decay_t<decltype(v)>;
+    V tmp(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < n; ++k) tmp[k] = v[order[k]];
+    v.swap(tmp);
+  };
+  permute(position_);
+  permute(velocity_);
+  permute(predicted_);
+  permute(id_);
+}
+
+void PbfSolver::updateNeighbors(StepStats& stats) {
+  const std::size_t n = size();
+  const float h = params_.supportRadius();
+  const float skin = params_.neighbor_skin * h;
+  if (skin > 0.0f && lists_valid_ && build_position_.size() == n) {
+    // Reuse while every particle moved less than half the skin since the build: then no
+    // pair closer than h now was farther than h + skin then.
+    const float limit2 = 0.25f * skin * skin;
+    float moved2 = 0.0f;
+#pragma omp parallel for reduction(max : moved2) schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      moved2 = std::max(moved2, (predicted_[i] - build_position_[i]).squaredNorm());
+    if (moved2 < limit2) {
+      stats.neighbor_lists_reused = true;
+      return;
+    }
+  }
+  Eigen::AlignedBox3f domain = container_;
+  if (!domain.isEmpty()) domain.extend(domain.min() - Eigen::Vector3f::Constant(h)).extend(domain.max() + Eigen::Vector3f::Constant(h));
+  reorder(grid_->build(predicted_, h + skin, domain));
+  grid_->findNeighbors(predicted_, h + skin);
+  if (skin > 0.0f) build_position_ = predicted_;
+  lists_valid_ = true;
+}
+
+// The two hot passes below are written branch-free over raw float arrays so that the
+// compiler vectorises the neighbour loop (gathers + masks). Coincident pairs, which have no
+// direction, contribute nothing there; they are counted and the rare particle that has one
+// is recomputed by the exact scalar path (pairGradient) instead.
+
+Eigen::Vector3f PbfSolver::pairGradient(std::size_t i, std::uint32_t j) const {
+  const Kernels k(params_.supportRadius());
+  Pair p;
+  p.r = predicted_[i] - predicted_[j];
+  p.r2 = p.r.squaredNorm();
+  if (p.r2 >= k.h2) return Eigen::Vector3f::Zero();
+  p.rlen = std::sqrt(p.r2);
+  return spikyGradientSafe(k, p, id_[i], id_[j]);
+}
+
+void PbfSolver::computeLambdas(float& avg_error) {
+  const std::size_t n = size();
+  const Kernels k(params_.supportRadius());
+  const std::uint32_t* off = grid_->offsets().data();
+  const std::uint32_t* nbr = grid_->indices().data();
+  const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
+  const float mass = params_.particleMass();
+  const float inv_rho0 = 1.0f / params_.rest_density;
+  const float grad_scale = mass * inv_rho0;  // grad C = (m / rho0) grad W (eq 7 with mass)
+  const float self_density = mass * k.poly6(0.0f);
+  const bool unilateral = params_.unilateral_constraint;
+  const float eps = params_.cfm_epsilon;
+  const float h = k.h, h2 = k.h2, poly6c = mass * k.poly6_coef;
+  const float spiky = grad_scale * k.spiky_grad_coef;
+  const float tiny2 = kCoincident * h2;
+
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+    float rho = self_density, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
+    int coincident = 0;
+#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nbr[e];
+      const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
+      const float r2 = dx * dx + dy * dy + dz * dz;
+      const float w = std::max(h2 - r2, 0.0f);
+      rho += poly6c * w * w * w;
+      const float rlen = std::sqrt(r2);
+      const float dl = std::max(h - rlen, 0.0f);
+      const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
+      coincident += r2 <= tiny2 ? 1 : 0;
+      gx += g * dx;
+      gy += g * dy;
+      gz += g * dz;
+      sum_grad2 += g * g * r2;
+    }
+    if (coincident > 0) {  // rare: redo the gradients with directions for coincident pairs
+      Eigen::Vector3f gi = Eigen::Vector3f::Zero();
+      sum_grad2 = 0.0f;
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const Eigen::Vector3f g = grad_scale * pairGradient(i, nbr[e]);
+        gi += g;
+        sum_grad2 += g.squaredNorm();
+      }
+      gx = gi.x(), gy = gi.y(), gz = gi.z();
+    }
+    density_[i] = rho;
+    float c = rho * inv_rho0 - 1.0f;
+    if (unilateral) c = std::max(c, 0.0f);
+    lambda_[i] = c == 0.0f ? 0.0f : -c / (sum_grad2 + gx * gx + gy * gy + gz * gz + eps);
+  }
+  avg_error = static_cast<float>(
+      deterministicSum(n, [&](std::size_t i) {
+        return std::max(0.0, static_cast<double>(density_[i]) * inv_rho0 - 1.0);
+      }) / std::max<std::size_t>(n, 1));
+}
+
+void PbfSolver::computeDeltas() {
+  const std::size_t n = size();
+  const Kernels k(params_.supportRadius());
+  const std::uint32_t* off = grid_->offsets().data();
+  const std::uint32_t* nbr = grid_->indices().data();
+  const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
+  const float* L = lambda_.data();
+  const float grad_scale = params_.particleMass() / params_.rest_density;
+  const bool scorr = params_.scorr_k > 0.0f;
+  const float h = k.h, h2 = k.h2, spiky = k.spiky_grad_coef, tiny2 = kCoincident * h2;
+  // s_corr = -k (W(r) / W(dq))^n (Macklin & Mueller eq 13; the seed's eq 11 lost the
+  // parentheses). With k = 0 the loop without it runs: no cost.
+  const float dq = params_.scorr_delta_q * h;
+  const float poly6_rel = scorr ? k.poly6_coef / k.poly6(dq * dq) : 0.0f;
+  const float scorr_k = params_.scorr_k, scorr_n = params_.scorr_n;
+  const bool scorr_n4 = scorr_n == 4.0f;
+
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+    const float li = L[i];
+    float dx_sum = 0.0f, dy_sum = 0.0f, dz_sum = 0.0f;
+    int coincident = 0;
+    if (!scorr) {
+#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
+        const float r2 = dx * dx + dy * dy + dz * dz;
+        const float rlen = std::sqrt(r2);
+        const float dl = std::max(h - rlen, 0.0f);
+        const float g = r2 > tiny2 ? (li + L[j]) * spiky * dl * dl / rlen : 0.0f;
+        coincident += r2 <= tiny2 ? 1 : 0;
+        dx_sum += g * dx;
+        dy_sum += g * dy;
+        dz_sum += g * dz;
+      }
+    } else {
+#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
+        const float r2 = dx * dx + dy * dy + dz * dz;
+        const float w = std::max(h2 - r2, 0.0f);
+        const float rel = poly6_rel * w * w * w;
+        const float s = scorr_n4 ? (rel * rel) * (rel * rel) : std::pow(rel, scorr_n);
+        const float rlen = std::sqrt(r2);
+        const float dl = std::max(h - rlen, 0.0f);
+        const float g = r2 > tiny2 ? (li + L[j] - scorr_k * s) * spiky * dl * dl / rlen : 0.0f;
+        coincident += r2 <= tiny2 ? 1 : 0;
+        dx_sum += g * dx;
+        dy_sum += g * dy;
+        dz_sum += g * dz;
+      }
+    }
+    Eigen::Vector3f dp(dx_sum, dy_sum, dz_sum);
+    if (coincident > 0) {  // rare: exact path with directions for coincident pairs
+      dp.setZero();
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        float s = li + L[j];
+        if (scorr) {
+          const float r2 = (predicted_[i] - predicted_[j]).squaredNorm();
+          s -= scorr_k * std::pow(poly6_rel * std::pow(std::max(h2 - r2, 0.0f), 3.0f), scorr_n);
+        }
+        dp += s * pairGradient(i, j);
+      }
+    }
+    delta_[i] = grad_scale * dp;
+  }
+}
+
+void PbfSolver::applyDeltasAndBoundary() {
+  const std::size_t n = size();
+  const bool box = !container_.isEmpty();
+  // Particle centres stay half a spacing from the walls: sphere surfaces touch them, and
+  // the initial lattice (first layer at d/2) is already in place.
+  const Eigen::Vector3f lo = container_.min() + Eigen::Vector3f::Constant(0.5f * params_.particle_spacing);
+  const Eigen::Vector3f hi = container_.max() - Eigen::Vector3f::Constant(0.5f * params_.particle_spacing);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Vector3f p = predicted_[i] + delta_[i];
+    if (box) p = p.cwiseMax(lo).cwiseMin(hi);
+    predicted_[i] = p;
+  }
+}
+
+void PbfSolver::updateVelocities(float dt) {
+  const std::size_t n = size();
+  const float inv_dt = 1.0f / dt;
+  const bool box = !container_.isEmpty();
+  const Eigen::Vector3f lo = container_.min() + Eigen::Vector3f::Constant(0.5f * params_.particle_spacing);
+  const Eigen::Vector3f hi = container_.max() - Eigen::Vector3f::Constant(0.5f * params_.particle_spacing);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    // With zero iterations the prediction itself may have left the box.
+    Eigen::Vector3f p = predicted_[i];
+    if (box) p = p.cwiseMax(lo).cwiseMin(hi);
+    velocity_[i] = (p - position_[i]) * inv_dt;
+    position_[i] = p;
+  }
+}
+
+void PbfSolver::computeDensityAndVorticity() {
+  const std::size_t n = size();
+  const Kernels k(params_.supportRadius());
+  const auto& off = grid_->offsets();
+  const auto& nbr = grid_->indices();
+  const float mass = params_.particleMass();
+  const float self_density = mass * k.poly6(0.0f);
+  const bool vorticity = params_.vorticity_epsilon > 0.0f;
+  if (vorticity) vorticity_.resize(n);
+  neighbor_count_.resize(n);
+
+  // Density first (vorticity needs every density).
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f pi = position_[i];
+    float rho = self_density;
+    std::uint32_t count = 0;
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const float r2 = (pi - position_[nbr[e]]).squaredNorm();
+      if (r2 >= k.h2) continue;
+      rho += mass * k.poly6(r2);
+      ++count;
+    }
+    density_[i] = rho;
+    neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
+  }
+  if (!vorticity) return;
+  // omega_i = sum_j V_j grad_i W_ij x (v_j - v_i): the SPH curl of the velocity.
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f pi = position_[i], vi = velocity_[i];
+    Eigen::Vector3f w = Eigen::Vector3f::Zero();
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nbr[e];
+      Pair p;
+      p.r = pi - position_[j];
+      p.r2 = p.r.squaredNorm();
+      if (p.r2 >= k.h2) continue;
+      p.rlen = std::sqrt(p.r2);
+      w += (mass / density_[j]) * spikyGradientSafe(k, p, id_[i], id_[j]).cross(velocity_[j] - vi);
+    }
+    vorticity_[i] = w;
+  }
+}
+
+void PbfSolver::applyViscosityAndVorticity(float dt) {
+  const std::size_t n = size();
+  const Kernels k(params_.supportRadius());
+  const auto& off = grid_->offsets();
+  const auto& nbr = grid_->indices();
+  const float mass = params_.particleMass();
+  const float c = params_.xsph_c;
+  const bool vorticity = params_.vorticity_epsilon > 0.0f;
+  const float veps = params_.vorticity_epsilon;
+
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f pi = position_[i], vi = velocity_[i];
+    Eigen::Vector3f xsph = Eigen::Vector3f::Zero();
+    Eigen::Vector3f eta = Eigen::Vector3f::Zero();
+    const float wi = vorticity ? vorticity_[i].norm() : 0.0f;
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nbr[e];
+      Pair p;
+      p.r = pi - position_[j];
+      p.r2 = p.r.squaredNorm();
+      if (p.r2 >= k.h2) continue;
+      const float vol = mass / density_[j];
+      // XSPH (eq 10) with the m_j / rho_j factor.
+      if (c > 0.0f) xsph += (vol * k.poly6(p.r2)) * (velocity_[j] - vi);
+      if (vorticity) {
+        p.rlen = std::sqrt(p.r2);
+        // eta = grad |omega|, SPH difference form (exact for a constant field).
+        eta += (vol * (vorticity_[j].norm() - wi)) * spikyGradientSafe(k, p, id_[i], id_[j]);
+      }
+    }
+    Eigen::Vector3f v = vi + c * xsph;
+    if (vorticity) {
+      const float eta_len = eta.norm();
+      // No gradient, no direction: confinement has nothing to amplify there.
+      if (eta_len > 1e-12f) v += (dt * veps) * (eta / eta_len).cross(vorticity_[i]);
+    }
+    new_velocity_[i] = v;
+  }
+  velocity_.swap(new_velocity_);
+}
+
+void PbfSolver::enforceSpeedLimit(float dt, StepStats& stats) {
+  const float cap = maxSpeedCap();
+  if (cap <= 0.0f) return;
+  const float cap2 = cap * cap;
+  int limited = 0;
+#pragma omp parallel for reduction(+ : limited) schedule(static)
+  for (std::size_t i = 0; i < size(); ++i) {
+    const float s2 = velocity_[i].squaredNorm();
+    if (s2 > cap2) {
+      velocity_[i] *= cap / std::sqrt(s2);
+      ++limited;
+    }
+  }
+  stats.speed_limited = limited > 0;
+}
+
+bool PbfSolver::stateIsFinite() const {
+  int bad = 0;
+#pragma omp parallel for reduction(+ : bad) schedule(static)
+  for (std::size_t i = 0; i < size(); ++i)
+    if (!position_[i].allFinite() || !velocity_[i].allFinite() || !std::isfinite(density_[i])) ++bad;
+  return bad == 0;
+}
+
+void PbfSolver::gatherStats(StepStats& stats) const {
+  const std::size_t n = size();
+  const double inv_rho0 = 1.0 / params_.rest_density;
+  const double mass = params_.particleMass();
+  double max_err = n ? -1.0 : 0.0;
+  float vmax2 = 0.0f;
+#pragma omp parallel for reduction(max : max_err, vmax2) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    max_err = std::max(max_err, density_[i] * inv_rho0 - 1.0);
+    vmax2 = std::max(vmax2, velocity_[i].squaredNorm());
+  }
+  stats.max_density_error = max_err;
+  stats.max_speed = std::sqrt(vmax2);
+  const double denom = std::max<std::size_t>(n, 1);
+  stats.avg_density_error =
+      deterministicSum(n, [&](std::size_t i) { return std::max(0.0, density_[i] * inv_rho0 - 1.0); }) /
+      denom;
+  stats.kinetic_energy =
+      0.5 * mass * deterministicSum(n, [&](std::size_t i) { return double(velocity_[i].squaredNorm()); });
+}
+
+}  // namespace pbf

@@ -1,0 +1,314 @@
+#include "pbf_ros/core/Scene.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+namespace pbf {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& origin, const std::string& key,
+                       const std::string& expected) {
+  throw SceneError(origin + ": key '" + key + "': expected " + expected);
+}
+
+float readFloat(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsScalar()) fail(origin, key, "a number");
+  try {
+    const double v = n.as<double>();
+    if (!std::isfinite(v)) fail(origin, key, "a finite number");
+    return static_cast<float>(v);
+  } catch (const YAML::Exception&) {
+    fail(origin, key, "a number (got '" + n.Scalar() + "')");
+  }
+}
+
+int readInt(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsScalar()) fail(origin, key, "an integer");
+  try {
+    return n.as<int>();
+  } catch (const YAML::Exception&) {
+    fail(origin, key, "an integer (got '" + n.Scalar() + "')");
+  }
+}
+
+bool readBool(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsScalar()) fail(origin, key, "true or false");
+  try {
+    return n.as<bool>();
+  } catch (const YAML::Exception&) {
+    fail(origin, key, "true or false (got '" + n.Scalar() + "')");
+  }
+}
+
+Eigen::Vector3f readVec3(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsSequence() || n.size() != 3) fail(origin, key, "a list of 3 numbers");
+  Eigen::Vector3f v;
+  for (int a = 0; a < 3; ++a) v[a] = readFloat(n[a], origin, key + "[" + std::to_string(a) + "]");
+  return v;
+}
+
+const YAML::Node required(const YAML::Node& map, const std::string& name,
+                          const std::string& origin, const std::string& key) {
+  const YAML::Node n = map[name];
+  if (!n) fail(origin, key, "to be present");
+  return n;
+}
+
+void checkKeys(const YAML::Node& map, const std::vector<std::string>& allowed,
+               const std::string& origin, const std::string& prefix) {
+  for (const auto& kv : map) {
+    const std::string k = kv.first.as<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw SceneError(origin + ": unknown key '" + prefix + k + "' (known: " + list + ")");
+    }
+  }
+}
+
+// Every solver parameter a scene or parameter file may set, by name.
+using Setter = std::function<void(SolverParams&, const YAML::Node&, const std::string&,
+                                  const std::string&)>;
+const std::map<std::string, Setter>& solverSetters() {
+  static const std::map<std::string, Setter> setters = [] {
+    std::map<std::string, Setter> m;
+    auto f = [&m](const char* name, float SolverParams::*field) {
+      m[name] = [field](SolverParams& p, const YAML::Node& n, const std::string& o,
+                        const std::string& k) { p.*field = readFloat(n, o, k); };
+    };
+    auto i = [&m](const char* name, int SolverParams::*field) {
+      m[name] = [field](SolverParams& p, const YAML::Node& n, const std::string& o,
+                        const std::string& k) { p.*field = readInt(n, o, k); };
+    };
+    auto b = [&m](const char* name, bool SolverParams::*field) {
+      m[name] = [field](SolverParams& p, const YAML::Node& n, const std::string& o,
+                        const std::string& k) { p.*field = readBool(n, o, k); };
+    };
+    f("rest_density", &SolverParams::rest_density);
+    f("particle_spacing", &SolverParams::particle_spacing);
+    f("support_radius_factor", &SolverParams::support_radius_factor);
+    m["gravity"] = [](SolverParams& p, const YAML::Node& n, const std::string& o,
+                      const std::string& k) { p.gravity = readVec3(n, o, k); };
+    f("time_step", &SolverParams::time_step);
+    b("adaptive_time_step", &SolverParams::adaptive_time_step);
+    f("cfl_factor", &SolverParams::cfl_factor);
+    f("min_time_step", &SolverParams::min_time_step);
+    f("max_time_step", &SolverParams::max_time_step);
+    i("min_iterations", &SolverParams::min_iterations);
+    i("max_iterations", &SolverParams::max_iterations);
+    f("density_tolerance", &SolverParams::density_tolerance);
+    f("cfm_epsilon", &SolverParams::cfm_epsilon);
+    b("unilateral_constraint", &SolverParams::unilateral_constraint);
+    f("scorr_k", &SolverParams::scorr_k);
+    f("scorr_n", &SolverParams::scorr_n);
+    f("scorr_delta_q", &SolverParams::scorr_delta_q);
+    f("xsph_c", &SolverParams::xsph_c);
+    f("vorticity_epsilon", &SolverParams::vorticity_epsilon);
+    f("neighbor_skin", &SolverParams::neighbor_skin);
+    i("max_nan_retries", &SolverParams::max_nan_retries);
+    f("max_speed_factor", &SolverParams::max_speed_factor);
+    return m;
+  }();
+  return setters;
+}
+
+void applySolverNode(const YAML::Node& node, const std::string& origin, const std::string& prefix,
+                     SolverParams& params) {
+  if (!node.IsMap()) fail(origin, prefix.empty() ? "solver" : prefix, "a map of solver parameters");
+  const auto& setters = solverSetters();
+  for (const auto& kv : node) {
+    const std::string k = kv.first.as<std::string>();
+    const auto it = setters.find(k);
+    if (it == setters.end()) {
+      std::string list;
+      for (const auto& s : setters) list += (list.empty() ? "" : ", ") + s.first;
+      throw SceneError(origin + ": unknown solver parameter '" + prefix + k + "' (known: " + list + ")");
+    }
+    it->second(params, kv.second, origin, prefix + k);
+  }
+  const std::string err = params.validate();
+  if (!err.empty()) throw SceneError(origin + ": solver parameters: " + err);
+}
+
+FluidBlock readBlock(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsMap()) fail(origin, key, "a map with 'box' or 'sphere'");
+  checkKeys(n, {"box", "sphere", "velocity"}, origin, key + ".");
+  FluidBlock b;
+  if (n["box"] && n["sphere"]) fail(origin, key, "either 'box' or 'sphere', not both");
+  if (const YAML::Node box = n["box"]) {
+    checkKeys(box, {"min", "max"}, origin, key + ".box.");
+    b.shape = FluidBlock::Shape::Box;
+    b.min = readVec3(required(box, "min", origin, key + ".box.min"), origin, key + ".box.min");
+    b.max = readVec3(required(box, "max", origin, key + ".box.max"), origin, key + ".box.max");
+    if (!(b.min.array() < b.max.array()).all()) fail(origin, key + ".box", "min < max on every axis");
+  } else if (const YAML::Node s = n["sphere"]) {
+    checkKeys(s, {"center", "radius"}, origin, key + ".sphere.");
+    b.shape = FluidBlock::Shape::Sphere;
+    b.center = readVec3(required(s, "center", origin, key + ".sphere.center"), origin,
+                        key + ".sphere.center");
+    b.radius = readFloat(required(s, "radius", origin, key + ".sphere.radius"), origin,
+                         key + ".sphere.radius");
+    if (!(b.radius > 0.0f)) fail(origin, key + ".sphere.radius", "a number > 0");
+  } else {
+    fail(origin, key, "a 'box' or a 'sphere'");
+  }
+  if (const YAML::Node v = n["velocity"]) b.velocity = readVec3(v, origin, key + ".velocity");
+  return b;
+}
+
+bool blockContains(const FluidBlock& b, const Eigen::Vector3f& p) {
+  if (b.shape == FluidBlock::Shape::Box)
+    return (p.array() >= b.min.array()).all() && (p.array() < b.max.array()).all();
+  return (p - b.center).squaredNorm() <= b.radius * b.radius;
+}
+
+}  // namespace
+
+Scene loadSceneString(const std::string& text, const std::string& origin) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError(origin + ": not valid YAML: " + e.what());
+  }
+  if (!root.IsMap()) throw SceneError(origin + ": expected a map at the top level");
+  checkKeys(root, {"name", "description", "container", "domain_pose", "fluid", "solver"}, origin, "");
+  Scene s;
+  s.source = origin;
+  s.name = root["name"] ? root["name"].as<std::string>() : fs::path(origin).stem().string();
+
+  const YAML::Node c = required(root, "container", origin, "container");
+  if (!c.IsMap()) fail(origin, "container", "a map with 'min' and 'max'");
+  checkKeys(c, {"min", "max"}, origin, "container.");
+  const Eigen::Vector3f cmin = readVec3(required(c, "min", origin, "container.min"), origin, "container.min");
+  const Eigen::Vector3f cmax = readVec3(required(c, "max", origin, "container.max"), origin, "container.max");
+  if (!(cmin.array() < cmax.array()).all()) fail(origin, "container", "min < max on every axis");
+  s.container = Eigen::AlignedBox3f(cmin, cmax);
+
+  if (const YAML::Node pose = root["domain_pose"]) {
+    checkKeys(pose, {"translation", "rpy"}, origin, "domain_pose.");
+    if (pose["translation"]) s.domain_translation = readVec3(pose["translation"], origin, "domain_pose.translation");
+    if (pose["rpy"]) s.domain_rpy = readVec3(pose["rpy"], origin, "domain_pose.rpy");
+  }
+
+  const YAML::Node fluid = required(root, "fluid", origin, "fluid");
+  if (!fluid.IsSequence() || fluid.size() == 0) fail(origin, "fluid", "a non-empty list of blocks");
+  for (std::size_t i = 0; i < fluid.size(); ++i)
+    s.fluid.push_back(readBlock(fluid[i], origin, "fluid[" + std::to_string(i) + "]"));
+
+  if (const YAML::Node solver = root["solver"]) applySolverNode(solver, origin, "solver.", s.solver);
+
+  const std::string err = s.validate();
+  if (!err.empty()) throw SceneError(origin + ": " + err);
+  return s;
+}
+
+Scene loadSceneFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path + ": cannot open the scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return loadSceneString(ss.str(), path);
+}
+
+void applySolverYaml(const std::string& text, const std::string& origin, SolverParams& params) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError(origin + ": not valid YAML: " + e.what());
+  }
+  SolverParams copy = params;  // all or nothing
+  applySolverNode(root, origin, "", copy);
+  params = copy;
+}
+
+std::string resolveScenePath(const std::string& name, const std::string& scenes_dir) {
+  if (name.empty()) throw SceneError("scene: expected a scene name or a path, got an empty string");
+  const bool is_path = name.find('/') != std::string::npos ||
+                       (name.size() > 5 && name.substr(name.size() - 5) == ".yaml");
+  const std::string path = is_path ? name : scenes_dir + "/" + name + ".yaml";
+  if (fs::is_regular_file(path)) return path;
+  std::string known;
+  std::error_code ec;
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(scenes_dir, ec))
+    if (e.path().extension() == ".yaml") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  throw SceneError("scene '" + name + "': no such file " + path + " (known scenes in " + scenes_dir +
+                   ": " + (known.empty() ? "none" : known) + ")");
+}
+
+std::string Scene::validate() const {
+  std::ostringstream err;
+  const std::string p = solver.validate();
+  if (!p.empty()) return "solver: " + p;
+  if (container.isEmpty()) return "container is empty";
+  const float d = solver.particle_spacing;
+  const double cells = (container.sizes() / d).cast<double>().prod();
+  if (cells > 5.0e8) {
+    err << "container / particle_spacing gives " << cells << " lattice cells; expected at most 5e8";
+    return err.str();
+  }
+  for (std::size_t i = 0; i < fluid.size(); ++i) {
+    const FluidBlock& b = fluid[i];
+    Eigen::AlignedBox3f bb = b.shape == FluidBlock::Shape::Box
+                                 ? Eigen::AlignedBox3f(b.min, b.max)
+                                 : Eigen::AlignedBox3f(b.center - Eigen::Vector3f::Constant(b.radius),
+                                                       b.center + Eigen::Vector3f::Constant(b.radius));
+    if (!container.contains(bb)) {
+      err << "fluid[" << i << "] reaches outside the container";
+      return err.str();
+    }
+    if ((bb.sizes().array() < d).any()) {
+      err << "fluid[" << i << "] is thinner than one particle_spacing (" << d << " m)";
+      return err.str();
+    }
+  }
+  return "";
+}
+
+void Scene::initialParticles(std::vector<Eigen::Vector3f>& positions,
+                             std::vector<Eigen::Vector3f>& velocities) const {
+  positions.clear();
+  velocities.clear();
+  const float d = solver.particle_spacing;
+  for (std::size_t bi = 0; bi < fluid.size(); ++bi) {
+    const FluidBlock& b = fluid[bi];
+    Eigen::Vector3f lo, hi;
+    if (b.shape == FluidBlock::Shape::Box) {
+      lo = b.min;
+      hi = b.max;
+    } else {
+      lo = b.center - Eigen::Vector3f::Constant(b.radius);
+      hi = b.center + Eigen::Vector3f::Constant(b.radius);
+    }
+    const Eigen::Vector3i n = ((hi - lo) / d).array().floor().cast<int>().max(1);
+    // Centre the lattice in the block so that round-off in (hi - lo) / d never adds a layer.
+    const Eigen::Vector3f start = lo + 0.5f * ((hi - lo) - (n.cast<float>() * d)) +
+                                  Eigen::Vector3f::Constant(0.5f * d);
+    for (int z = 0; z < n.z(); ++z)
+      for (int y = 0; y < n.y(); ++y)
+        for (int x = 0; x < n.x(); ++x) {
+          const Eigen::Vector3f p = start + d * Eigen::Vector3f(x, y, z);
+          if (!blockContains(b, p) && b.shape == FluidBlock::Shape::Sphere) continue;
+          bool earlier = false;
+          for (std::size_t k = 0; k < bi && !earlier; ++k) earlier = blockContains(fluid[k], p);
+          if (earlier) continue;
+          positions.push_back(p);
+          velocities.push_back(b.velocity);
+        }
+  }
+}
+
+}  // namespace pbf

@@ -1,0 +1,55 @@
+#include "pbf_ros/core/SolverParams.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace pbf {
+
+namespace {
+bool finite(float v) { return std::isfinite(v); }
+}  // namespace
+
+std::string SolverParams::validate() const {
+  std::ostringstream err;
+  auto positive = [&](const char* name, float v) {
+    if (!(finite(v) && v > 0.0f)) err << name << " must be a finite number > 0 (got " << v << ")";
+  };
+  auto nonNegative = [&](const char* name, float v) {
+    if (!(finite(v) && v >= 0.0f)) err << name << " must be a finite number >= 0 (got " << v << ")";
+  };
+  positive("rest_density", rest_density);
+  if (err.tellp() == 0) positive("particle_spacing", particle_spacing);
+  if (err.tellp() == 0 && !(finite(support_radius_factor) && support_radius_factor >= 1.0f &&
+                            support_radius_factor <= 4.0f))
+    err << "support_radius_factor must be in [1, 4] (got " << support_radius_factor << ")";
+  if (err.tellp() == 0 && !gravity.allFinite()) err << "gravity must be finite";
+  if (err.tellp() == 0) positive("time_step", time_step);
+  if (err.tellp() == 0) positive("cfl_factor", cfl_factor);
+  if (err.tellp() == 0) positive("min_time_step", min_time_step);
+  if (err.tellp() == 0) positive("max_time_step", max_time_step);
+  if (err.tellp() == 0 && min_time_step > max_time_step)
+    err << "min_time_step (" << min_time_step << ") must be <= max_time_step (" << max_time_step
+        << ")";
+  if (err.tellp() == 0 && (min_iterations < 1 || max_iterations < min_iterations ||
+                           max_iterations > 1000))
+    err << "iterations must satisfy 1 <= min_iterations <= max_iterations <= 1000 (got "
+        << min_iterations << ", " << max_iterations << ")";
+  if (err.tellp() == 0) nonNegative("density_tolerance", density_tolerance);
+  if (err.tellp() == 0) nonNegative("cfm_epsilon", cfm_epsilon);
+  if (err.tellp() == 0) nonNegative("scorr_k", scorr_k);
+  if (err.tellp() == 0 && !(finite(scorr_n) && scorr_n >= 1.0f && scorr_n <= 16.0f))
+    err << "scorr_n must be in [1, 16] (got " << scorr_n << ")";
+  if (err.tellp() == 0 && !(finite(scorr_delta_q) && scorr_delta_q > 0.0f && scorr_delta_q < 1.0f))
+    err << "scorr_delta_q must be in (0, 1) (fraction of h; got " << scorr_delta_q << ")";
+  if (err.tellp() == 0 && !(finite(xsph_c) && xsph_c >= 0.0f && xsph_c <= 1.0f))
+    err << "xsph_c must be in [0, 1] (got " << xsph_c << ")";
+  if (err.tellp() == 0) nonNegative("vorticity_epsilon", vorticity_epsilon);
+  if (err.tellp() == 0 && !(finite(neighbor_skin) && neighbor_skin >= 0.0f && neighbor_skin <= 1.0f))
+    err << "neighbor_skin must be in [0, 1] (fraction of h; got " << neighbor_skin << ")";
+  if (err.tellp() == 0 && (max_nan_retries < 0 || max_nan_retries > 30))
+    err << "max_nan_retries must be in [0, 30] (got " << max_nan_retries << ")";
+  if (err.tellp() == 0) nonNegative("max_speed_factor", max_speed_factor);
+  return err.str();
+}
+
+}  // namespace pbf

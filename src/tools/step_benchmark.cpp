@@ -1,0 +1,81 @@
+// pbf_step_benchmark: Google Benchmark of one solver step on the dam break, the figures of
+// the README's performance table. 4 fixed iterations, fixed dt, 1 and 2 threads.
+//   pbf_step_benchmark --benchmark_repetitions=3
+// Each run first simulates 0.25 s (warm-up into a realistic, splashing state), then times
+// steps; per-stage times are reported as counters (ms per step).
+
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <map>
+#include <memory>
+
+#include "pbf_ros/core/PbfSolver.h"
+#include "pbf_ros/core/Scene.h"
+
+#ifndef PBF_SOURCE_DIR
+#define PBF_SOURCE_DIR "."
+#endif
+
+namespace {
+
+// Spacing for about 20k, 80k and 320k particles in the default dam break.
+float spacingFor(int kilo_particles) {
+  switch (kilo_particles) {
+    case 20: return 0.02f;
+    case 80: return 0.0126f;
+    default: return 0.0079f;
+  }
+}
+
+std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles) {
+  pbf::Scene scene = pbf::loadSceneFile(std::string(PBF_SOURCE_DIR) + "/config/scenes/dam_break.yaml");
+  scene.solver.particle_spacing = spacingFor(kilo_particles);
+  scene.solver.adaptive_time_step = false;
+  scene.solver.time_step = 1.0f / 400.0f;
+  scene.solver.min_iterations = scene.solver.max_iterations = 4;
+  scene.solver.density_tolerance = 0.0f;
+  std::vector<Eigen::Vector3f> x, v;
+  scene.initialParticles(x, v);
+  auto solver = std::make_unique<pbf::PbfSolver>();
+  solver->setParams(scene.solver);
+  solver->setContainer(scene.container);
+  solver->setParticles(x, v);
+  while (solver->time() < 0.25) solver->step();
+  return solver;
+}
+
+void BM_DamBreakStep(benchmark::State& state) {
+  const int kilo = static_cast<int>(state.range(0));
+  const int threads = static_cast<int>(state.range(1));
+  omp_set_num_threads(threads);
+  auto solver = makeWarmSolver(kilo);
+  pbf::StageTimes sum;
+  for (auto _ : state) {
+    const pbf::StepStats st = solver->step();
+    sum.neighbors_ms += st.times.neighbors_ms;
+    sum.solve_ms += st.times.solve_ms;
+    sum.viscosity_vorticity_ms += st.times.viscosity_vorticity_ms;
+    sum.other_ms += st.times.other_ms;
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["particles"] = static_cast<double>(solver->size());
+  state.counters["neighbors_ms"] = sum.neighbors_ms / n;
+  state.counters["solve_ms"] = sum.solve_ms / n;
+  state.counters["visc_vort_ms"] = sum.viscosity_vorticity_ms / n;
+  state.counters["other_ms"] = sum.other_ms / n;
+  state.counters["ns_per_particle"] = benchmark::Counter(
+      static_cast<double>(solver->size()) * n, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  omp_set_num_threads(omp_get_num_procs());
+}
+
+}  // namespace
+
+BENCHMARK(BM_DamBreakStep)
+    ->ArgNames({"kparticles", "threads"})
+    ->ArgsProduct({{20, 80, 320}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(1.0);
+
+BENCHMARK_MAIN();
