@@ -1,0 +1,55 @@
+#pragma once
+// How the fluid surface is smoothed and shaded. Lengths are in metres unless the name says
+// "in radii" (multiples of the particle radius) or "pixels".
+
+#include <Eigen/Core>
+#include <cstdint>
+
+namespace pbf {
+
+enum class DepthFilter {
+  NarrowRange,  // Truong & Yuksel, I3D 2018 (default)
+  Bilateral,    // classic 2-D bilateral filter
+  None,         // raw sphere depths (bumpy; for debugging and comparison)
+};
+
+struct RenderOptions {
+  // --- depth smoothing ---
+  DepthFilter filter = DepthFilter::NarrowRange;
+  // Gaussian sigma in world units, as a multiple of the particle radius; projected to pixels
+  // at each pixel's depth. One radius flattens the bumps of spheres 2 radii apart by
+  // ~exp(-pi^2 / 2), i.e. below 1 %.
+  float filter_sigma_in_radii = 1.5f;
+  // Upper bound of the kernel radius in pixels (a close-up costs no more than this).
+  int max_filter_radius_pixels = 24;
+  // Narrow range: samples more than threshold behind the centre (and their mirror images)
+  // are ignored; samples more than threshold in front are clamped to clamp in front.
+  float narrow_range_threshold_in_radii = 8.0f;
+  float narrow_range_clamp_in_radii = 1.0f;
+  // Bilateral: Gaussian range sigma.
+  float bilateral_depth_sigma_in_radii = 2.0f;
+
+  // --- what is drawn ---
+  // Draw only particles with fewer than interior_neighbor_count neighbours in the depth
+  // pass (needs the neighbour counts passed to render()). The thickness pass always uses
+  // every visible particle, since interior particles are what make water thick.
+  bool surface_particles_only = false;
+  std::uint32_t interior_neighbor_count = 24;
+
+  // --- shading ---
+  float refractive_index = 1.333f;
+  float fresnel_f0 = 0.02f;  // reflectance of water at normal incidence
+  // Beer-Lambert absorption per metre of thickness (red is absorbed most: water is blue).
+  Eigen::Vector3f absorption = Eigen::Vector3f(9.0f, 3.0f, 1.2f);
+  // World direction towards the light (z up), need not be normalised.
+  Eigen::Vector3f light_direction = Eigen::Vector3f(0.4f, 0.3f, 1.0f);
+  float specular_strength = 0.6f;
+  float specular_exponent = 200.0f;
+  // Procedural background: a checkered floor at this height of the world frame, sky above.
+  float floor_height = 0.0f;
+  float floor_tile_size = 0.1f;
+  // Background pixels get alpha 0 when false (the fluid can then be overlaid on something).
+  bool draw_background = true;
+};
+
+}  // namespace pbf
