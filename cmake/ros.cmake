@@ -1,1 +1,32 @@
-# pbf_ros_node and pbf_node: see issue 3
+# pbf_ros_node: the ROS layer (FluidNode and its plain conversion functions), and pbf_node.
+# The only code that knows ROS; it translates between the graph and pbf_core.
+include_directories(${catkin_INCLUDE_DIRS})
+
+add_library(pbf_ros_node
+  src/ros/CloudConversion.cpp
+  src/ros/ContainerMarkers.cpp
+  src/ros/DomainTransform.cpp
+  src/ros/FluidDiagnostics.cpp
+  src/ros/FluidNode.cpp
+  src/ros/FluidNodeReconfigure.cpp
+  src/ros/FluidNodeServices.cpp
+  src/ros/ParamsConversion.cpp
+  src/ros/RealTimePacer.cpp
+  src/ros/SceneLoading.cpp
+  src/ros/SimulationLoop.cpp
+  src/ros/SimulationTasks.cpp
+  src/ros/SnapshotBuffer.cpp
+  src/ros/StatsConversion.cpp)
+target_include_directories(pbf_ros_node PUBLIC include ${CATKIN_DEVEL_PREFIX}/include)
+target_link_libraries(pbf_ros_node PUBLIC pbf_core ${catkin_LIBRARIES})
+# The generated SimulationStats.h and FluidConfig.h must exist before we compile.
+add_dependencies(pbf_ros_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
+
+add_executable(pbf_node src/nodes/pbf_node.cpp)
+target_link_libraries(pbf_node pbf_ros_node)
+
+install(TARGETS pbf_ros_node pbf_node
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(DIRECTORY launch config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})

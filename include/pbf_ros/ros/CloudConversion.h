@@ -1,0 +1,25 @@
+#pragma once
+// Solver arrays -> sensor_msgs/PointCloud2. A plain function (no node, no master) so it is
+// unit-tested on its own and reused by anyone who has particle arrays.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <sensor_msgs/PointCloud2.h>
+#include <vector>
+
+namespace pbf_ros {
+
+// Number of float32 fields per point: x y z vx vy vz density.
+constexpr std::size_t kCloudFieldCount = 7;
+
+// Fills `cloud` (fields, layout and data; the header is the caller's) with one point per
+// particle: x y z [m], vx vy vz [m/s], density [kg/m^3], all float32, height 1, dense.
+// `densities` may be empty (before the first step): density is 0 then.
+// Particles with a non-finite value are left out so NaN never reaches the wire (the solver
+// never produces them; this is a last guard). Returns how many were left out.
+std::size_t fillParticleCloud(const std::vector<Eigen::Vector3f>& positions,
+                              const std::vector<Eigen::Vector3f>& velocities,
+                              const std::vector<float>& densities,
+                              sensor_msgs::PointCloud2& cloud);
+
+}  // namespace pbf_ros

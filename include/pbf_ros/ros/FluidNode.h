@@ -1,0 +1,142 @@
+#pragma once
+// pbf_node: runs a PbfSolver in its own thread and publishes it to ROS.
+//
+// Threads (ARCHITECTURE.md section 4):
+//  - the simulation thread owns the solver, the scene and the pacing. It steps at the
+//    requested real-time factor, publishes what is due and runs queued changes between steps;
+//  - ROS callbacks (reconfigure, services, diagnostics) run on an AsyncSpinner. They never
+//    touch the solver: they post tasks to the simulation thread and wait for the answer;
+//  - a future render thread takes particle snapshots from snapshots() (never blocks).
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
+#include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+
+#include <pbf_ros/FluidConfig.h>
+
+#include "pbf_ros/core/PbfSolver.h"
+#include "pbf_ros/core/Scene.h"
+#include "pbf_ros/ros/FluidDiagnostics.h"
+#include "pbf_ros/ros/RealTimePacer.h"
+#include "pbf_ros/ros/SimulationTasks.h"
+#include "pbf_ros/ros/SnapshotBuffer.h"
+
+namespace pbf_ros {
+
+class FluidNode {
+ public:
+  // Loads the scene and parameters, advertises everything and starts the simulation thread.
+  // Throws std::runtime_error naming what is wrong (bad scene, bad parameter) when the node
+  // cannot start.
+  FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  ~FluidNode();  // stops and joins the simulation thread
+  FluidNode(const FluidNode&) = delete;
+  FluidNode& operator=(const FluidNode&) = delete;
+
+  // Particle state for a render thread (see SnapshotBuffer).
+  SnapshotBuffer& snapshots() { return snapshots_; }
+
+ private:
+  using ReconfigureServer = dynamic_reconfigure::Server<FluidConfig>;
+
+  // --- start-up (FluidNode.cpp) ---
+  void readNodeSettings();
+  FluidConfig startupConfig(const pbf::Scene& scene);
+  void advertise();
+  void startReconfigure(const FluidConfig& initial);
+
+  // --- reconfigure (FluidNodeReconfigure.cpp); spinner thread ---
+  void onReconfigure(FluidConfig& config, std::uint32_t level);
+  void refuse(const std::string& what);
+
+  // --- services (FluidNodeServices.cpp); spinner thread ---
+  bool onResetService(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool onPauseService(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
+  bool onStepService(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  // Runs `task` on the simulation thread and waits; "" = success, else the error.
+  std::string runOnSimulation(std::function<std::string()> task);
+
+  // --- simulation thread (SimulationLoop.cpp) ---
+  void runSimulation();
+  void stepOnce();
+  void publishDue(double wall, bool force);
+  void publishCloud();
+  void publishStats();
+  void publishClock();
+  // Replaces the fluid by the scene's initial state with `params`. "" or the error (the
+  // running fluid is untouched then).
+  std::string rebuildFluid(const pbf::Scene& scene, const pbf::SolverParams& params);
+  void announceScene();  // markers + static tf
+  void setRates(double publish_rate, double stats_rate);
+  void updateHealth();
+  ros::Time stamp() const;
+  double wallNow() const;
+
+  // --- diagnostics (spinner thread) ---
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  ros::NodeHandle nh_, pnh_;
+
+  // Settings read once at start-up.
+  std::string scenes_dir_;
+  std::string world_frame_ = "world";
+  std::string domain_frame_ = "fluid_domain";
+  bool publish_clock_ = false;
+  std::size_t max_particles_ = 1000000;
+  HealthThresholds thresholds_;
+
+  // ROS interface.
+  ros::Publisher particles_pub_, stats_pub_, markers_pub_, clock_pub_;
+  ros::ServiceServer reset_srv_, pause_srv_, step_srv_;
+  tf2_ros::StaticTransformBroadcaster tf_static_;
+  std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
+  ros::WallTimer diagnostics_timer_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<ReconfigureServer> reconfigure_;
+
+  // Reconfigure state (spinner thread, serialised by the reconfigure server).
+  bool reconfigure_live_ = false;      // false while the server calls back during start-up
+  FluidConfig applied_config_;         // what is in force
+  pbf::Scene applied_scene_;           // the scene of applied_config_
+  FluidConfig user_config_;            // parameters as the user set them at start-up
+  std::set<std::string> user_param_names_;  // ... and which ones were set explicitly
+
+  // Simulation thread state (set up in the constructor before the thread starts).
+  std::unique_ptr<pbf::PbfSolver> solver_;
+  pbf::Scene scene_;
+  RealTimePacer pacer_;
+  bool paused_ = false;
+  bool stepped_since_resume_ = false;
+  double sim_clock_ = 0.0;             // monotonic over resets: what /clock shows [s]
+  pbf::StepStats last_stats_;
+  std::uint32_t nan_recoveries_ = 0;   // since the last reset
+  double publish_period_ = 1.0 / 30.0, stats_period_ = 0.1;
+  double next_cloud_wall_ = 0.0, next_stats_wall_ = 0.0, next_snapshot_wall_ = 0.0;
+  double last_clock_wall_ = 0.0;
+  double cloud_ms_ = 0.0;
+  bool cloud_skipped_ = true;
+  sensor_msgs::PointCloud2 cloud_;     // reused: its buffer is not reallocated every time
+  SimulationTasks tasks_;
+  SnapshotBuffer snapshots_;
+  std::atomic<bool> running_{false};
+  std::thread sim_thread_;
+
+  // Shared with the diagnostics callback.
+  std::mutex health_mutex_;
+  HealthSample health_;
+};
+
+}  // namespace pbf_ros

@@ -1,0 +1,57 @@
+#pragma once
+// Paces simulated time against wall time at a requested real-time factor, and measures the
+// factor actually achieved. Plain (times are passed in, in seconds) so it is unit-tested.
+//
+// Sim time follows wall time: the simulation steps while it is behind
+//   target(wall) = anchor_sim + factor * (wall - anchor_wall).
+// When it cannot keep up, it does not try to catch up forever: once the debt exceeds
+// max_lag of wall time, the anchor moves to "now" (the debt is dropped) and the dropped
+// time is counted. achievedFactor() then tells the truth about the speed reached.
+
+#include <cstdint>
+#include <deque>
+#include <utility>
+
+namespace pbf_ros {
+
+class RealTimePacer {
+ public:
+  // max_lag: wall seconds of debt tolerated before it is dropped; window: wall seconds over
+  // which the achieved factor is measured.
+  explicit RealTimePacer(double max_lag = 0.1, double window = 2.0);
+
+  // 0 = as fast as possible. Negative or non-finite values are treated as 1.
+  void setFactor(double factor);
+  double factor() const { return factor_; }
+
+  // Starts pacing afresh from (wall, sim): after start-up, resume, reset or a factor change.
+  // Forgets the measurement window.
+  void restart(double wall, double sim);
+
+  // True when a step should be taken now.
+  bool shouldStep(double wall, double sim) const;
+  // Wall time at which `sim` is due (when to wake up); wall itself when factor is 0.
+  double wallTimeDue(double sim) const;
+
+  // Records a step that ended at (wall, sim); drops excessive debt.
+  void afterStep(double wall, double sim);
+
+  // Simulated seconds per wall second over the window (0 before two samples).
+  double achievedFactor() const;
+  // True when debt was dropped within the last window: the requested factor is not reached.
+  bool fallingBehind(double wall) const;
+  // Simulated seconds that were not simulated because the simulation could not keep up.
+  double droppedSimTime() const { return dropped_sim_time_; }
+
+ private:
+  double max_lag_;
+  double window_;
+  double factor_ = 1.0;
+  double anchor_wall_ = 0.0;
+  double anchor_sim_ = 0.0;
+  double last_drop_wall_ = -1.0e300;
+  double dropped_sim_time_ = 0.0;
+  std::deque<std::pair<double, double>> samples_;  // (wall, sim)
+};
+
+}  // namespace pbf_ros

@@ -1,0 +1,30 @@
+#pragma once
+// pbf::StepStats plus what the node knows (time, pacing, cloud work) -> SimulationStats.
+
+#include <cstdint>
+#include <ros/time.h>
+#include <string>
+
+#include <pbf_ros/SimulationStats.h>
+
+#include "pbf_ros/core/StepStats.h"
+
+namespace pbf_ros {
+
+// What the node adds to the solver's statistics of a step.
+struct StatsContext {
+  ros::Time stamp;
+  std::string frame_id;
+  double sim_time = 0.0;            // since the last reset [s]
+  std::uint64_t step_count = 0;     // since the last reset
+  std::uint32_t particle_count = 0;
+  double real_time_factor = 0.0;    // achieved
+  std::uint32_t nan_recoveries = 0; // since the last reset
+  double cloud_ms = 0.0;            // last ~particles fill
+  bool cloud_skipped = false;       // last ~particles opportunity had no subscriber
+};
+
+// Non-finite numbers become 0 (NaN never reaches a publisher; nan_recoveries tells).
+SimulationStats toStatsMessage(const pbf::StepStats& stats, const StatsContext& context);
+
+}  // namespace pbf_ros

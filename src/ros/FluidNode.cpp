@@ -1,0 +1,139 @@
+// Start-up of pbf_node: settings, scene, solver, ROS interface, then the simulation thread.
+#include "pbf_ros/ros/FluidNode.h"
+
+#include <rosgraph_msgs/Clock.h>
+#include <stdexcept>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <pbf_ros/SimulationStats.h>
+
+#include "pbf_ros/ros/ParamsConversion.h"
+#include "pbf_ros/ros/SceneLoading.h"
+
+namespace pbf_ros {
+
+FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
+    : nh_(nh), pnh_(private_nh) {
+  readNodeSettings();
+
+  // A bad scene at start-up is fatal: the caller reports it and the node exits non-zero.
+  std::string scene_name;
+  pnh_.param<std::string>("scene", scene_name, FluidConfig::__getDefault__().scene);
+  pbf::Scene scene;
+  try {
+    scene = loadScene(scene_name, scenes_dir_);
+  } catch (const pbf::SceneError& e) {
+    throw std::runtime_error(std::string("cannot load scene: ") + e.what());
+  }
+
+  FluidConfig config = startupConfig(scene);
+  config.scene = scene_name;
+  const pbf::SolverParams params = configToSolverParams(config);
+  const std::string invalid = params.validate();
+  if (!invalid.empty()) throw std::runtime_error("unusable solver parameters: " + invalid);
+
+  advertise();
+  const std::string error = rebuildFluid(scene, params);
+  if (!error.empty()) throw std::runtime_error("cannot build the fluid: " + error);
+  applied_scene_ = scene_;
+  pacer_.setFactor(config.real_time_factor);
+  setRates(config.publish_rate, config.stats_rate);
+  startReconfigure(config);
+
+  ROS_INFO("pbf_node: scene '%s' (%s), %zu particles, spacing %.4g m, real-time factor %g%s",
+           scene_.name.c_str(), scene_.source.c_str(), solver_->size(),
+           params.particle_spacing, config.real_time_factor, paused_ ? ", paused" : "");
+
+  running_ = true;
+  pacer_.restart(wallNow(), sim_clock_);
+  sim_thread_ = std::thread(&FluidNode::runSimulation, this);
+  reconfigure_live_ = true;
+}
+
+FluidNode::~FluidNode() {
+  running_ = false;
+  tasks_.wake();
+  if (sim_thread_.joinable()) sim_thread_.join();
+}
+
+void FluidNode::readNodeSettings() {
+  pnh_.param<std::string>("scenes_dir", scenes_dir_, defaultScenesDir());
+  pnh_.param<std::string>("world_frame", world_frame_, world_frame_);
+  pnh_.param<std::string>("frame_id", domain_frame_, domain_frame_);
+  pnh_.param("publish_clock", publish_clock_, publish_clock_);
+  pnh_.param("start_paused", paused_, false);
+  int max_particles = static_cast<int>(max_particles_);
+  pnh_.param("max_particles", max_particles, max_particles);
+  if (max_particles < 1) {
+    ROS_WARN("pbf_node: ~max_particles %d is not positive; using 1000000", max_particles);
+    max_particles = 1000000;
+  }
+  max_particles_ = static_cast<std::size_t>(max_particles);
+  double max_lag = 0.1;
+  pnh_.param("max_lag", max_lag, max_lag);
+  pacer_ = RealTimePacer(max_lag);
+  pnh_.param("diagnostics/rtf_warn_ratio", thresholds_.rtf_warn_ratio, thresholds_.rtf_warn_ratio);
+  pnh_.param("diagnostics/rtf_error_ratio", thresholds_.rtf_error_ratio,
+             thresholds_.rtf_error_ratio);
+  pnh_.param("diagnostics/density_error_warn", thresholds_.density_error_warn,
+             thresholds_.density_error_warn);
+  pnh_.param("diagnostics/density_error_error", thresholds_.density_error_error,
+             thresholds_.density_error_error);
+}
+
+// Precedence: Fluid.cfg defaults < the scene's `solver:` map < parameters the user set in
+// the private namespace (YAML, launch file) < later reconfigure requests.
+FluidConfig FluidNode::startupConfig(const pbf::Scene& scene) {
+  user_config_ = FluidConfig::__getDefault__();
+  user_config_.__fromServer__(pnh_);
+  for (const std::string& name : configParamNames()) {
+    if (pnh_.hasParam(name)) user_param_names_.insert(name);
+  }
+  user_param_names_.erase("scene");  // the scene is chosen, not overlaid
+
+  FluidConfig from_scene = user_config_;
+  solverParamsToConfig(scene.solver, from_scene);
+  FluidConfig config = from_scene;
+  overlayParams(user_config_, user_param_names_, config);
+  for (const std::string& note : sanitizeConfig(config, from_scene))
+    ROS_WARN("pbf_node: parameter %s", note.c_str());
+  return config;
+}
+
+void FluidNode::advertise() {
+  particles_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("particles", 2);
+  stats_pub_ = pnh_.advertise<SimulationStats>("stats", 10);
+  markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
+  if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+
+  reset_srv_ = pnh_.advertiseService("reset", &FluidNode::onResetService, this);
+  pause_srv_ = pnh_.advertiseService("pause", &FluidNode::onPauseService, this);
+  step_srv_ = pnh_.advertiseService("step", &FluidNode::onStepService, this);
+
+  diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
+  diagnostics_->setHardwareID("pbf_solver");
+  diagnostics_->add("simulation", this, &FluidNode::diagnose);
+  // Wall timer + force_update: diagnostics keep coming while sim time is paused.
+  diagnostics_timer_ = nh_.createWallTimer(
+      ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->force_update(); });
+}
+
+void FluidNode::startReconfigure(const FluidConfig& initial) {
+  reconfigure_ = std::make_unique<ReconfigureServer>(reconfigure_mutex_, pnh_);
+  reconfigure_->updateConfig(initial);  // the scene and YAML values seed the server
+  reconfigure_->setCallback(
+      [this](FluidConfig& config, std::uint32_t level) { onReconfigure(config, level); });
+}
+
+void FluidNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  HealthSample sample;
+  {
+    std::lock_guard<std::mutex> lock(health_mutex_);
+    sample = health_;
+    health_.nan_recoveries_recent = 0;
+    health_.failed_steps_recent = 0;
+  }
+  reportHealth(sample, thresholds_, status);
+}
+
+}  // namespace pbf_ros

@@ -1,0 +1,117 @@
+// dynamic_reconfigure: check a request, decide per level bit what must be redone, and hand
+// the change to the simulation thread (applied between steps). The callback waits for the
+// simulation thread, so when the reconfigure call returns the change is in force.
+#include <sstream>
+
+#include "pbf_ros/ros/FluidNode.h"
+#include "pbf_ros/ros/ParamsConversion.h"
+#include "pbf_ros/ros/ReconfigureLevels.h"
+#include "pbf_ros/ros/SceneLoading.h"
+
+namespace pbf_ros {
+
+void FluidNode::refuse(const std::string& what) {
+  ROS_WARN("pbf_node: %s", what.c_str());
+  std::lock_guard<std::mutex> lock(health_mutex_);
+  health_.last_refused = what;
+}
+
+void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
+  if (!reconfigure_live_) {  // the server's first call, during start-up: already in force
+    applied_config_ = config;
+    return;
+  }
+
+  for (const std::string& note : sanitizeConfig(config, applied_config_)) refuse(note);
+
+  // The scene: load and check it here, so a bad one is refused before anything changes.
+  pbf::Scene scene = applied_scene_;
+  bool rebuild = false;
+  if (config.scene != applied_config_.scene) {
+    try {
+      scene = loadScene(config.scene, scenes_dir_);
+      rebuild = true;
+      // The new scene brings its solver settings; the user's start-up overrides stay on top.
+      FluidConfig fresh = config;
+      solverParamsToConfig(scene.solver, fresh);
+      overlayParams(user_config_, user_param_names_, fresh);
+      for (const std::string& note : sanitizeConfig(fresh, applied_config_)) refuse(note);
+      config = fresh;
+    } catch (const pbf::SceneError& e) {
+      refuse("scene '" + config.scene + "' refused (" + e.what() + "); '" +
+             applied_config_.scene + "' keeps running");
+      config.scene = applied_config_.scene;
+    }
+  }
+
+  const std::uint32_t level = config.__level__(applied_config_);
+  if (level == 0) {
+    config = applied_config_;
+    return;
+  }
+  rebuild = rebuild || (level & level::kResolution);
+
+  const pbf::SolverParams params = configToSolverParams(config);
+  const std::string invalid = params.validate();
+  if (!invalid.empty()) {
+    refuse("reconfigure refused: " + invalid + "; previous parameters kept");
+    config = applied_config_;
+    return;
+  }
+  if (rebuild) {
+    // Refuse resolutions that would ask for more particles than the node allows.
+    pbf::Scene probe = scene;
+    probe.solver = params;
+    std::vector<Eigen::Vector3f> positions, velocities;
+    probe.initialParticles(positions, velocities);
+    if (positions.size() > max_particles_) {
+      std::ostringstream why;
+      why << "scene '" << config.scene << "' with particle_spacing " << config.particle_spacing
+          << " needs " << positions.size() << " particles, more than ~max_particles ("
+          << max_particles_ << "); refused";
+      refuse(why.str());
+      config = applied_config_;
+      return;
+    }
+  }
+
+  const bool solver_change = (level & level::kAnySolverParam) != 0;
+  const double factor = config.real_time_factor;
+  const double publish_rate = config.publish_rate, stats_rate = config.stats_rate;
+  const bool pacing_change = (level & level::kPacing) != 0;
+  const bool publishing_change = (level & level::kPublishing) != 0;
+  const std::string error = runOnSimulation([=]() -> std::string {
+    if (rebuild) {
+      const std::string e = rebuildFluid(scene, params);
+      if (!e.empty()) return e;
+    } else if (solver_change) {
+      try {
+        solver_->setParams(params);  // the fluid keeps its state
+        scene_.solver = params;
+      } catch (const std::exception& e) {
+        return e.what();
+      }
+    }
+    if (publishing_change) setRates(publish_rate, stats_rate);
+    if (pacing_change) {
+      pacer_.setFactor(factor);
+      pacer_.restart(wallNow(), sim_clock_);
+    }
+    return "";
+  });
+  if (!error.empty()) {
+    refuse("reconfigure refused: " + error + "; the running simulation is unchanged");
+    config = applied_config_;
+    return;
+  }
+  if (rebuild) {
+    ROS_INFO("pbf_node: %s scene '%s' (spacing %.4g m)",
+             (level & level::kScene) ? "switched to" : "rebuilt", config.scene.c_str(),
+             config.particle_spacing);
+  }
+  applied_config_ = config;
+  applied_scene_ = scene;
+  applied_scene_.solver = params;
+}
+
+}  // namespace pbf_ros

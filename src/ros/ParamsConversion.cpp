@@ -1,0 +1,141 @@
+#include "pbf_ros/ros/ParamsConversion.h"
+
+#include <boost/any.hpp>
+#include <cmath>
+#include <sstream>
+
+namespace pbf_ros {
+
+void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
+  c.particle_spacing = p.particle_spacing;
+  c.rest_density = p.rest_density;
+  c.support_radius_factor = p.support_radius_factor;
+  c.max_nan_retries = p.max_nan_retries;
+  c.max_speed_factor = p.max_speed_factor;
+  c.gravity_x = p.gravity.x();
+  c.gravity_y = p.gravity.y();
+  c.gravity_z = p.gravity.z();
+  c.time_step = p.time_step;
+  c.adaptive_time_step = p.adaptive_time_step;
+  c.cfl_factor = p.cfl_factor;
+  c.min_time_step = p.min_time_step;
+  c.max_time_step = p.max_time_step;
+  c.min_iterations = p.min_iterations;
+  c.max_iterations = p.max_iterations;
+  c.density_tolerance = p.density_tolerance;
+  c.cfm_epsilon = p.cfm_epsilon;
+  c.unilateral_constraint = p.unilateral_constraint;
+  c.scorr_k = p.scorr_k;
+  c.scorr_n = p.scorr_n;
+  c.scorr_delta_q = p.scorr_delta_q;
+  c.xsph_c = p.xsph_c;
+  c.vorticity_epsilon = p.vorticity_epsilon;
+  c.neighbor_skin = p.neighbor_skin;
+}
+
+pbf::SolverParams configToSolverParams(const FluidConfig& c) {
+  pbf::SolverParams p;
+  p.particle_spacing = static_cast<float>(c.particle_spacing);
+  p.rest_density = static_cast<float>(c.rest_density);
+  p.support_radius_factor = static_cast<float>(c.support_radius_factor);
+  p.max_nan_retries = c.max_nan_retries;
+  p.max_speed_factor = static_cast<float>(c.max_speed_factor);
+  p.gravity = Eigen::Vector3f(static_cast<float>(c.gravity_x), static_cast<float>(c.gravity_y),
+                              static_cast<float>(c.gravity_z));
+  p.time_step = static_cast<float>(c.time_step);
+  p.adaptive_time_step = c.adaptive_time_step;
+  p.cfl_factor = static_cast<float>(c.cfl_factor);
+  p.min_time_step = static_cast<float>(c.min_time_step);
+  p.max_time_step = static_cast<float>(c.max_time_step);
+  p.min_iterations = c.min_iterations;
+  p.max_iterations = c.max_iterations;
+  p.density_tolerance = static_cast<float>(c.density_tolerance);
+  p.cfm_epsilon = static_cast<float>(c.cfm_epsilon);
+  p.unilateral_constraint = c.unilateral_constraint;
+  p.scorr_k = static_cast<float>(c.scorr_k);
+  p.scorr_n = static_cast<float>(c.scorr_n);
+  p.scorr_delta_q = static_cast<float>(c.scorr_delta_q);
+  p.xsph_c = static_cast<float>(c.xsph_c);
+  p.vorticity_epsilon = static_cast<float>(c.vorticity_epsilon);
+  p.neighbor_skin = static_cast<float>(c.neighbor_skin);
+  return p;
+}
+
+namespace {
+
+// Copies one parameter between configs through its description (the generated code offers
+// no typed setter by name).
+void copyParam(const FluidConfig::AbstractParamDescriptionConstPtr& desc, const FluidConfig& from,
+               FluidConfig& to) {
+  dynamic_reconfigure::Config msg;
+  desc->toMessage(msg, from);
+  desc->fromMessage(msg, to);
+}
+
+template <typename T>
+T valueOf(const FluidConfig::AbstractParamDescriptionConstPtr& desc, const FluidConfig& config) {
+  boost::any value;
+  desc->getValue(config, value);
+  return boost::any_cast<T>(value);
+}
+
+}  // namespace
+
+std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& in_force) {
+  std::vector<std::string> notes;
+  const FluidConfig& min = FluidConfig::__getMin__();
+  const FluidConfig& max = FluidConfig::__getMax__();
+  for (const auto& desc : FluidConfig::__getParamDescriptions__()) {
+    std::ostringstream note;
+    if (desc->type == "double") {
+      const double value = valueOf<double>(desc, config);
+      if (!std::isfinite(value)) {
+        copyParam(desc, in_force, config);
+        note << desc->name << ": " << value << " is not a finite number; refused, keeping "
+             << valueOf<double>(desc, config);
+      } else if (value < valueOf<double>(desc, min) || value > valueOf<double>(desc, max)) {
+        desc->clamp(config, max, min);
+        note << desc->name << ": " << value << " is outside [" << valueOf<double>(desc, min)
+             << ", " << valueOf<double>(desc, max) << "]; clamped to "
+             << valueOf<double>(desc, config);
+      }
+    } else if (desc->type == "int") {
+      const int value = valueOf<int>(desc, config);
+      if (value < valueOf<int>(desc, min) || value > valueOf<int>(desc, max)) {
+        desc->clamp(config, max, min);
+        note << desc->name << ": " << value << " is outside [" << valueOf<int>(desc, min)
+             << ", " << valueOf<int>(desc, max) << "]; clamped to " << valueOf<int>(desc, config);
+      }
+    }
+    if (!note.str().empty()) notes.push_back(note.str());
+  }
+  if (config.min_iterations > config.max_iterations) {
+    notes.push_back("max_iterations: " + std::to_string(config.max_iterations) +
+                    " is below min_iterations; raised to " +
+                    std::to_string(config.min_iterations));
+    config.max_iterations = config.min_iterations;
+  }
+  if (config.min_time_step > config.max_time_step) {
+    std::ostringstream note;
+    note << "min_time_step: " << config.min_time_step << " is above max_time_step; lowered to "
+         << config.max_time_step;
+    notes.push_back(note.str());
+    config.min_time_step = config.max_time_step;
+  }
+  return notes;
+}
+
+void overlayParams(const FluidConfig& from, const std::set<std::string>& names,
+                   FluidConfig& to) {
+  for (const auto& desc : FluidConfig::__getParamDescriptions__()) {
+    if (names.count(desc->name)) copyParam(desc, from, to);
+  }
+}
+
+std::vector<std::string> configParamNames() {
+  std::vector<std::string> names;
+  for (const auto& desc : FluidConfig::__getParamDescriptions__()) names.push_back(desc->name);
+  return names;
+}
+
+}  // namespace pbf_ros

@@ -1,0 +1,219 @@
+// The simulation thread: steps the solver at the requested real-time factor, publishes what
+// is due, and runs queued changes between steps. Everything here owns the solver; nothing
+// here waits for a ROS callback.
+#include <chrono>
+#include <cmath>
+#include <rosgraph_msgs/Clock.h>
+
+#include "pbf_ros/ros/CloudConversion.h"
+#include "pbf_ros/ros/ContainerMarkers.h"
+#include "pbf_ros/ros/DomainTransform.h"
+#include "pbf_ros/ros/FluidNode.h"
+#include "pbf_ros/ros/StatsConversion.h"
+
+namespace pbf_ros {
+
+namespace {
+using SteadyClock = std::chrono::steady_clock;
+
+SteadyClock::time_point toSteady(double seconds) {
+  return SteadyClock::time_point(std::chrono::duration_cast<SteadyClock::duration>(
+      std::chrono::duration<double>(seconds)));
+}
+
+// Next due time of a periodic job that just ran at `wall`: keeps the phase (no drift)
+// unless the job fell a whole period behind.
+double nextDue(double due, double period, double wall) {
+  due += period;
+  return due <= wall ? wall + period : due;
+}
+
+constexpr double kPausedWakeup = 0.05;     // [s] while paused: tasks, /clock, publications
+constexpr double kMinClockPeriod = 0.001;  // /clock at most 1 kHz (as-fast-as-possible runs)
+}  // namespace
+
+double FluidNode::wallNow() const {
+  return std::chrono::duration<double>(SteadyClock::now().time_since_epoch()).count();
+}
+
+// With ~publish_clock the node is the clock: its messages carry simulated time, as /clock.
+ros::Time FluidNode::stamp() const {
+  return publish_clock_ ? ros::Time(sim_clock_) : ros::Time::now();
+}
+
+void FluidNode::runSimulation() {
+  while (running_ && ros::ok()) {
+    tasks_.runAll();
+    const double wall = wallNow();
+    if (!paused_ && pacer_.shouldStep(wall, sim_clock_)) {
+      stepOnce();
+      publishDue(wallNow(), /*force=*/false);
+      continue;
+    }
+    publishDue(wall, /*force=*/false);
+    if (paused_) publishClock();
+
+    // Sleep until the next step or publication is due, or until a task arrives.
+    double wake = std::min(next_cloud_wall_, next_stats_wall_);
+    if (paused_)
+      wake = std::min(wake, wall + kPausedWakeup);
+    else
+      wake = std::min(wake, pacer_.wallTimeDue(sim_clock_) + 1e-6);
+    if (snapshots_.requestedRate() > 0.0) wake = std::min(wake, next_snapshot_wall_);
+    if (wake > wall) tasks_.waitUntil(toSteady(wake));
+  }
+}
+
+void FluidNode::stepOnce() {
+  const double time_before = solver_->time();
+  last_stats_ = solver_->step();
+  sim_clock_ += solver_->time() - time_before;
+  nan_recoveries_ += static_cast<std::uint32_t>(last_stats_.nan_retries);
+  stepped_since_resume_ = true;
+  const double wall = wallNow();
+  pacer_.afterStep(wall, sim_clock_);
+  if (pacer_.fallingBehind(wall)) {
+    ROS_WARN_THROTTLE(10.0, "pbf_node: cannot keep up with real-time factor %g: achieving %.3g",
+                      pacer_.factor(), pacer_.achievedFactor());
+  }
+  if (last_stats_.failed) {
+    ROS_ERROR_THROTTLE(5.0, "pbf_node: step %llu given up after %d NaN retries; state kept",
+                       static_cast<unsigned long long>(solver_->stepCount()),
+                       last_stats_.nan_retries);
+  }
+  {
+    std::lock_guard<std::mutex> lock(health_mutex_);
+    health_.nan_recoveries_recent += static_cast<std::uint32_t>(last_stats_.nan_retries);
+    health_.failed_steps_recent += last_stats_.failed ? 1u : 0u;
+  }
+  updateHealth();
+  publishClock();
+}
+
+void FluidNode::publishDue(double wall, bool force) {
+  if (force || wall >= next_cloud_wall_) {
+    next_cloud_wall_ = nextDue(next_cloud_wall_, publish_period_, wall);
+    publishCloud();
+  }
+  if (force || wall >= next_stats_wall_) {
+    next_stats_wall_ = nextDue(next_stats_wall_, stats_period_, wall);
+    publishStats();
+  }
+  const double snapshot_rate = snapshots_.requestedRate();
+  if (snapshot_rate > 0.0 && (force || wall >= next_snapshot_wall_)) {
+    next_snapshot_wall_ = nextDue(next_snapshot_wall_, 1.0 / snapshot_rate, wall);
+    snapshots_.write(*solver_, stamp().toSec(), solver_->time());
+  }
+}
+
+void FluidNode::publishCloud() {
+  // Lazy: nobody listens, nothing is built (stats report "cloud" as skipped).
+  if (particles_pub_.getNumSubscribers() == 0) {
+    cloud_skipped_ = true;
+    cloud_ms_ = 0.0;
+    return;
+  }
+  const auto start = SteadyClock::now();
+  cloud_.header.stamp = stamp();
+  cloud_.header.frame_id = domain_frame_;
+  const std::size_t dropped = fillParticleCloud(solver_->positions(), solver_->velocities(),
+                                                solver_->densities(), cloud_);
+  if (dropped > 0) {
+    ROS_ERROR_THROTTLE(5.0, "pbf_node: %zu particles with non-finite values left out of ~particles",
+                       dropped);
+  }
+  particles_pub_.publish(cloud_);
+  cloud_ms_ = std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
+  cloud_skipped_ = false;
+}
+
+void FluidNode::publishStats() {
+  if (stats_pub_.getNumSubscribers() == 0) return;
+  StatsContext context;
+  context.stamp = stamp();
+  context.frame_id = domain_frame_;
+  context.sim_time = solver_->time();
+  context.step_count = solver_->stepCount();
+  context.particle_count = static_cast<std::uint32_t>(solver_->size());
+  context.real_time_factor = paused_ ? 0.0 : pacer_.achievedFactor();
+  context.nan_recoveries = nan_recoveries_;
+  context.cloud_ms = cloud_ms_;
+  context.cloud_skipped = cloud_skipped_;
+  stats_pub_.publish(toStatsMessage(last_stats_, context));
+}
+
+void FluidNode::publishClock() {
+  if (!publish_clock_) return;
+  const double wall = wallNow();
+  if (wall - last_clock_wall_ < kMinClockPeriod) return;
+  last_clock_wall_ = wall;
+  rosgraph_msgs::Clock clock;
+  clock.clock = ros::Time(sim_clock_);
+  clock_pub_.publish(clock);
+}
+
+std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverParams& params) {
+  try {
+    pbf::Scene next = scene;
+    next.solver = params;
+    std::vector<Eigen::Vector3f> positions, velocities;
+    next.initialParticles(positions, velocities);
+    if (positions.size() > max_particles_) {
+      return "scene '" + next.name + "' needs " + std::to_string(positions.size()) +
+             " particles, more than ~max_particles (" + std::to_string(max_particles_) + ")";
+    }
+    // A fresh solver: time and step count start again from 0; the old one keeps running
+    // if anything below throws.
+    auto fresh = std::make_unique<pbf::PbfSolver>();
+    fresh->setParams(params);
+    fresh->setContainer(next.container);
+    fresh->setParticles(positions, velocities);
+    solver_ = std::move(fresh);
+    scene_ = next;
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  last_stats_ = pbf::StepStats();
+  last_stats_.particle_count = static_cast<std::uint32_t>(solver_->size());
+  nan_recoveries_ = 0;
+  stepped_since_resume_ = false;
+  pacer_.restart(wallNow(), sim_clock_);
+  next_cloud_wall_ = next_stats_wall_ = next_snapshot_wall_ = 0.0;  // publish promptly
+  announceScene();
+  updateHealth();
+  return "";
+}
+
+void FluidNode::announceScene() {
+  const ros::Time now = stamp();
+  markers_pub_.publish(makeContainerMarkers(scene_.container, domain_frame_, now));
+  tf_static_.sendTransform(makeDomainTransform(scene_, world_frame_, domain_frame_, now));
+}
+
+void FluidNode::setRates(double publish_rate, double stats_rate) {
+  publish_period_ = 1.0 / std::max(publish_rate, 1e-3);
+  stats_period_ = 1.0 / std::max(stats_rate, 1e-3);
+  const double wall = wallNow();
+  next_cloud_wall_ = std::min(next_cloud_wall_, wall + publish_period_);
+  next_stats_wall_ = std::min(next_stats_wall_, wall + stats_period_);
+}
+
+void FluidNode::updateHealth() {
+  std::lock_guard<std::mutex> lock(health_mutex_);
+  health_.scene = scene_.name;
+  health_.paused = paused_;
+  health_.running = stepped_since_resume_;
+  health_.requested_factor = pacer_.factor();
+  health_.achieved_factor = paused_ ? 0.0 : pacer_.achievedFactor();
+  health_.sim_time = solver_->time();
+  health_.step_count = solver_->stepCount();
+  health_.particle_count = static_cast<std::uint32_t>(solver_->size());
+  health_.avg_density_error = last_stats_.avg_density_error;
+  health_.max_density_error = last_stats_.max_density_error;
+  health_.max_speed = last_stats_.max_speed;
+  health_.iterations = last_stats_.iterations;
+  health_.dt = last_stats_.dt;
+  health_.nan_recoveries_total = nan_recoveries_;
+}
+
+}  // namespace pbf_ros
