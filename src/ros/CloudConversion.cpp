@@ -25,7 +25,8 @@ std::size_t fillParticleCloud(const std::vector<Eigen::Vector3f>& positions,
       kCloudFieldCount, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
       sensor_msgs::PointField::FLOAT32, "z", 1, sensor_msgs::PointField::FLOAT32, "vx", 1,
       sensor_msgs::PointField::FLOAT32, "vy", 1, sensor_msgs::PointField::FLOAT32, "vz", 1,
-      sensor_msgs::PointField::FLOAT32, "density", 1, sensor_msgs::PointField::FLOAT32);
+      sensor_msgs::PointField::FLOAT32, "density", 1, sensor_msgs::PointField::FLOAT32, "speed",
+      1, sensor_msgs::PointField::FLOAT32);
   cloud.is_bigendian = false;  // x86 and ARM hosts are little endian; memcpy keeps host order
   cloud.data.resize(n * cloud.point_step);
 
@@ -42,7 +43,10 @@ std::size_t fillParticleCloud(const std::vector<Eigen::Vector3f>& positions,
     point[4] = v.y();
     point[5] = v.z();
     point[6] = have_densities ? densities[i] : 0.0f;
-    if (!finite3(positions[i]) || !finite3(v) || !std::isfinite(point[6])) continue;
+    point[7] = v.norm();
+    if (!finite3(positions[i]) || !finite3(v) || !std::isfinite(point[6]) ||
+        !std::isfinite(point[7]))
+      continue;
     std::memcpy(out + written * cloud.point_step, point, sizeof(point));
     ++written;
   }

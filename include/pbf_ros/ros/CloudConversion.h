@@ -9,11 +9,12 @@
 
 namespace pbf_ros {
 
-// Number of float32 fields per point: x y z vx vy vz density.
-constexpr std::size_t kCloudFieldCount = 7;
+// Number of float32 fields per point: x y z vx vy vz density speed.
+constexpr std::size_t kCloudFieldCount = 8;
 
 // Fills `cloud` (fields, layout and data; the header is the caller's) with one point per
-// particle: x y z [m], vx vy vz [m/s], density [kg/m^3], all float32, height 1, dense.
+// particle: x y z [m], vx vy vz [m/s], density [kg/m^3], speed [m/s], all float32, height 1,
+// dense. speed = |v| is redundant but lets rviz (which colours by one channel) show it.
 // `densities` may be empty (before the first step): density is 0 then.
 // Particles with a non-finite value are left out so NaN never reaches the wire (the solver
 // never produces them; this is a last guard). Returns how many were left out.

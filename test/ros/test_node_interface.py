@@ -1,0 +1,97 @@
+#!/usr/bin/python3
+"""pbf_node's ROS interface: topics and their types, the cloud layout, lazy cloud building,
+latched container markers, the static transform and /diagnostics."""
+import math
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray
+from sensor_msgs.msg import PointField
+from tf2_msgs.msg import TFMessage
+from visualization_msgs.msg import MarkerArray
+
+from fluid_test_util import NODE, Latest, cloud_listener, cloud_points, stats_listener
+
+EXPECTED_TYPES = {
+    NODE + '/particles': 'sensor_msgs/PointCloud2',
+    NODE + '/stats': 'pbf_ros/SimulationStats',
+    NODE + '/markers': 'visualization_msgs/MarkerArray',
+    '/diagnostics': 'diagnostic_msgs/DiagnosticArray',
+    '/tf_static': 'tf2_msgs/TFMessage',
+}
+
+
+class NodeInterfaceTest(unittest.TestCase):
+
+    def test_01_topics_are_advertised_with_their_types(self):
+        deadline = time.time() + 20.0
+        while True:
+            topics = dict(rospy.get_published_topics())
+            missing = {t: ty for t, ty in EXPECTED_TYPES.items() if topics.get(t) != ty}
+            if not missing or time.time() > deadline:
+                break
+            time.sleep(0.2)
+        self.assertEqual(missing, {}, 'advertised: %s' % topics)
+
+    def test_02_no_subscriber_means_no_cloud_work(self):
+        stats = stats_listener()
+        try:
+            for _ in range(3):
+                m = stats.next(timeout=20.0)
+                self.assertIn('cloud', m.skipped_stages)
+                self.assertEqual(m.time_cloud_ms, 0.0)
+        finally:
+            stats.close()
+
+    def test_03_cloud_layout_and_size(self):
+        cloud_sub = cloud_listener()
+        stats = stats_listener()
+        try:
+            cloud = cloud_sub.next(timeout=20.0)
+            self.assertEqual(cloud.header.frame_id, 'fluid_domain')
+            self.assertEqual([f.name for f in cloud.fields][:7],
+                             ['x', 'y', 'z', 'vx', 'vy', 'vz', 'density'])
+            for f in cloud.fields:
+                self.assertEqual(f.datatype, PointField.FLOAT32, f.name)
+            # Once someone listens, the stats show the cloud being built.
+            m = stats.next(timeout=10.0, condition=lambda m: 'cloud' not in m.skipped_stages)
+            self.assertGreater(m.time_cloud_ms, 0.0)
+            self.assertEqual(cloud.width * cloud.height, m.particle_count)
+            self.assertGreater(m.particle_count, 100)
+            points = cloud_points(cloud)
+            self.assertTrue(all(math.isfinite(v) for p in points for v in p))
+        finally:
+            cloud_sub.close()
+            stats.close()
+
+    def test_04_container_markers_are_latched(self):
+        markers = Latest(NODE + '/markers', MarkerArray)
+        m = markers.current_or_next(timeout=10.0)
+        self.assertTrue(any(mk.ns == 'container' for mk in m.markers))
+        markers.close()
+
+    def test_05_static_transform_world_to_fluid_domain(self):
+        tf_static = Latest('/tf_static', TFMessage)
+        m = tf_static.current_or_next(timeout=10.0, condition=lambda m: any(
+            t.header.frame_id == 'world' and t.child_frame_id == 'fluid_domain'
+            for t in m.transforms))
+        self.assertIsNotNone(m)
+        tf_static.close()
+
+    def test_06_diagnostics_report_the_node(self):
+        diagnostics = Latest('/diagnostics', DiagnosticArray)
+        m = diagnostics.next(timeout=15.0, condition=lambda m: any(
+            'fluid' in s.name for s in m.status))
+        status = [s for s in m.status if 'fluid' in s.name][0]
+        keys = {kv.key for kv in status.values}
+        self.assertIn('achieved real-time factor', keys)
+        self.assertIn('average density error', keys)
+        self.assertIn('NaN recoveries since reset', keys)
+        diagnostics.close()
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_node_interface')
+    rostest.rosrun('pbf_ros', 'node_interface', NodeInterfaceTest)

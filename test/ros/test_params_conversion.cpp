@@ -1,0 +1,111 @@
+// FluidConfig <-> SolverParams, and the checks on user input (clamp, refuse non-finite).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "pbf_ros/ros/ParamsConversion.h"
+
+using pbf_ros::FluidConfig;
+
+namespace {
+bool mentions(const std::vector<std::string>& notes, const std::string& word) {
+  return std::any_of(notes.begin(), notes.end(),
+                     [&](const std::string& n) { return n.find(word) != std::string::npos; });
+}
+}  // namespace
+
+TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
+  pbf::SolverParams p;
+  p.particle_spacing = 0.03f;
+  p.gravity = Eigen::Vector3f(1.0f, -2.0f, -3.0f);
+  p.xsph_c = 0.2f;
+  p.vorticity_epsilon = 0.05f;
+  p.min_iterations = 3;
+  p.max_iterations = 7;
+  p.adaptive_time_step = false;
+  p.unilateral_constraint = false;
+  p.scorr_k = 0.1f;
+  p.neighbor_skin = 0.3f;
+  FluidConfig c = FluidConfig::__getDefault__();
+  pbf_ros::solverParamsToConfig(p, c);
+  const pbf::SolverParams q = pbf_ros::configToSolverParams(c);
+  EXPECT_FLOAT_EQ(q.particle_spacing, 0.03f);
+  EXPECT_TRUE(q.gravity.isApprox(p.gravity));
+  EXPECT_FLOAT_EQ(q.xsph_c, 0.2f);
+  EXPECT_FLOAT_EQ(q.vorticity_epsilon, 0.05f);
+  EXPECT_EQ(q.min_iterations, 3);
+  EXPECT_EQ(q.max_iterations, 7);
+  EXPECT_FALSE(q.adaptive_time_step);
+  EXPECT_FALSE(q.unilateral_constraint);
+  EXPECT_FLOAT_EQ(q.scorr_k, 0.1f);
+  EXPECT_FLOAT_EQ(q.neighbor_skin, 0.3f);
+}
+
+TEST(ParamsConversion, DefaultsMatchTheSolverDefaults) {
+  // Fluid.cfg's defaults and SolverParams' defaults must not drift apart.
+  const pbf::SolverParams from_cfg = pbf_ros::configToSolverParams(FluidConfig::__getDefault__());
+  const pbf::SolverParams solver;
+  EXPECT_FLOAT_EQ(from_cfg.particle_spacing, solver.particle_spacing);
+  EXPECT_FLOAT_EQ(from_cfg.xsph_c, solver.xsph_c);
+  EXPECT_FLOAT_EQ(from_cfg.cfm_epsilon, solver.cfm_epsilon);
+  EXPECT_EQ(from_cfg.max_iterations, solver.max_iterations);
+  EXPECT_TRUE(from_cfg.gravity.isApprox(solver.gravity));
+  EXPECT_EQ(from_cfg.validate(), "");
+}
+
+TEST(ParamsConversion, NonFiniteValuesAreRefusedAndTheValueInForceKept) {
+  FluidConfig in_force = FluidConfig::__getDefault__();
+  in_force.xsph_c = 0.05;
+  FluidConfig request = in_force;
+  request.xsph_c = std::numeric_limits<double>::quiet_NaN();
+  request.gravity_x = std::numeric_limits<double>::infinity();
+  const auto notes = pbf_ros::sanitizeConfig(request, in_force);
+  EXPECT_DOUBLE_EQ(request.xsph_c, 0.05);
+  EXPECT_DOUBLE_EQ(request.gravity_x, in_force.gravity_x);
+  EXPECT_TRUE(mentions(notes, "xsph_c"));
+  EXPECT_TRUE(mentions(notes, "gravity_x"));
+  EXPECT_TRUE(mentions(notes, "refused"));
+}
+
+TEST(ParamsConversion, OutOfRangeValuesAreClampedWithANote) {
+  FluidConfig in_force = FluidConfig::__getDefault__();
+  FluidConfig request = in_force;
+  request.gravity_z = -1.0e6;
+  request.max_iterations = 100000;
+  const auto notes = pbf_ros::sanitizeConfig(request, in_force);
+  EXPECT_DOUBLE_EQ(request.gravity_z, FluidConfig::__getMin__().gravity_z);
+  EXPECT_EQ(request.max_iterations, FluidConfig::__getMax__().max_iterations);
+  EXPECT_TRUE(mentions(notes, "gravity_z"));
+  EXPECT_TRUE(mentions(notes, "clamped"));
+}
+
+TEST(ParamsConversion, InconsistentPairsAreFixed) {
+  FluidConfig c = FluidConfig::__getDefault__();
+  c.min_iterations = 9;
+  c.max_iterations = 3;
+  c.min_time_step = 0.01;
+  c.max_time_step = 0.001;
+  const auto notes = pbf_ros::sanitizeConfig(c, FluidConfig::__getDefault__());
+  EXPECT_EQ(c.max_iterations, 9);
+  EXPECT_DOUBLE_EQ(c.min_time_step, c.max_time_step);
+  EXPECT_EQ(notes.size(), 2u);
+  EXPECT_EQ(pbf_ros::configToSolverParams(c).validate(), "");
+}
+
+TEST(ParamsConversion, SaneConfigHasNoNotes) {
+  FluidConfig c = FluidConfig::__getDefault__();
+  EXPECT_TRUE(pbf_ros::sanitizeConfig(c, c).empty());
+}
+
+TEST(ParamsConversion, OverlayCopiesOnlyTheNamedParameters) {
+  FluidConfig user = FluidConfig::__getDefault__();
+  user.particle_spacing = 0.05;
+  user.xsph_c = 0.3;
+  FluidConfig scene = FluidConfig::__getDefault__();
+  scene.particle_spacing = 0.01;
+  scene.xsph_c = 0.0;
+  pbf_ros::overlayParams(user, {"particle_spacing", "not_a_parameter"}, scene);
+  EXPECT_DOUBLE_EQ(scene.particle_spacing, 0.05);
+  EXPECT_DOUBLE_EQ(scene.xsph_c, 0.0);
+}

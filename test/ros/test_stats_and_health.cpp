@@ -1,0 +1,109 @@
+// StatsConversion and FluidDiagnostics: plain functions of the solver's numbers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "pbf_ros/ros/FluidDiagnostics.h"
+#include "pbf_ros/ros/StatsConversion.h"
+
+using diagnostic_msgs::DiagnosticStatus;
+
+TEST(StatsConversion, CopiesTheStepAndAddsTheNodeContext) {
+  pbf::StepStats s;
+  s.dt = 0.004;
+  s.iterations = 3;
+  s.avg_density_error = 0.01;
+  s.max_density_error = 0.05;
+  s.max_speed = 2.0;
+  s.kinetic_energy = 12.0;
+  s.neighbor_lists_reused = true;
+  s.times.solve_ms = 1.5;
+  s.times.total_ms = 3.0;
+  s.skipped_stages = {"vorticity"};
+  pbf_ros::StatsContext c;
+  c.frame_id = "fluid_domain";
+  c.sim_time = 1.25;
+  c.step_count = 42;
+  c.particle_count = 1000;
+  c.real_time_factor = 0.8;
+  c.cloud_ms = 0.7;
+  c.cloud_skipped = false;
+  const pbf_ros::SimulationStats m = pbf_ros::toStatsMessage(s, c);
+  EXPECT_EQ(m.header.frame_id, "fluid_domain");
+  EXPECT_DOUBLE_EQ(m.sim_time, 1.25);
+  EXPECT_EQ(m.step_count, 42u);
+  EXPECT_EQ(m.particle_count, 1000u);
+  EXPECT_EQ(m.iterations, 3u);
+  EXPECT_DOUBLE_EQ(m.time_solve_ms, 1.5);
+  EXPECT_DOUBLE_EQ(m.time_cloud_ms, 0.7);
+  EXPECT_DOUBLE_EQ(m.real_time_factor, 0.8);
+  EXPECT_TRUE(m.neighbor_lists_reused);
+  EXPECT_EQ(m.skipped_stages, std::vector<std::string>{"vorticity"});
+}
+
+TEST(StatsConversion, SkippedCloudIsListedAndCostsNothing) {
+  pbf_ros::StatsContext c;
+  c.cloud_ms = 5.0;
+  c.cloud_skipped = true;
+  const pbf_ros::SimulationStats m = pbf_ros::toStatsMessage(pbf::StepStats(), c);
+  EXPECT_DOUBLE_EQ(m.time_cloud_ms, 0.0);
+  EXPECT_NE(std::find(m.skipped_stages.begin(), m.skipped_stages.end(), "cloud"),
+            m.skipped_stages.end());
+}
+
+TEST(StatsConversion, NonFiniteNumbersNeverReachTheMessage) {
+  pbf::StepStats s;
+  s.max_speed = std::numeric_limits<double>::quiet_NaN();
+  s.kinetic_energy = std::numeric_limits<double>::infinity();
+  const pbf_ros::SimulationStats m = pbf_ros::toStatsMessage(s, pbf_ros::StatsContext());
+  EXPECT_DOUBLE_EQ(m.max_speed, 0.0);
+  EXPECT_DOUBLE_EQ(m.kinetic_energy, 0.0);
+}
+
+namespace {
+unsigned char levelOf(const pbf_ros::HealthSample& s) {
+  diagnostic_updater::DiagnosticStatusWrapper status;
+  pbf_ros::reportHealth(s, pbf_ros::HealthThresholds(), status);
+  return status.level;
+}
+pbf_ros::HealthSample healthy() {
+  pbf_ros::HealthSample s;
+  s.running = true;
+  s.requested_factor = 1.0;
+  s.achieved_factor = 1.0;
+  s.avg_density_error = 0.01;
+  return s;
+}
+}  // namespace
+
+TEST(FluidDiagnostics, HealthyIsOk) { EXPECT_EQ(levelOf(healthy()), DiagnosticStatus::OK); }
+
+TEST(FluidDiagnostics, SlowRealTimeFactorWarnsThenErrs) {
+  auto s = healthy();
+  s.achieved_factor = 0.5;
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::WARN);
+  s.achieved_factor = 0.1;
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::ERROR);
+  s.paused = true;  // paused is not slow
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::OK);
+  s.paused = false;
+  s.requested_factor = 0.0;  // as fast as possible: any speed is fine
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::OK);
+}
+
+TEST(FluidDiagnostics, DensityErrorWarnsThenErrs) {
+  auto s = healthy();
+  s.avg_density_error = 0.1;
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::WARN);
+  s.avg_density_error = 0.5;
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::ERROR);
+}
+
+TEST(FluidDiagnostics, NanRecoveriesWarnAndFailedStepsErr) {
+  auto s = healthy();
+  s.nan_recoveries_recent = 2;
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::WARN);
+  s.failed_steps_recent = 1;
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::ERROR);
+}

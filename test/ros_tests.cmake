@@ -1,0 +1,19 @@
+# ROS layer tests, run by ctest.
+#  - test_ros_units: GoogleTest, no master: the plain conversion / pacing / health functions.
+#  - rostest launch files: pbf_node on a small fluid (particle_spacing 0.05 -> ~1.3k
+#    particles) with Python test nodes, plus rostest's hztest for the cloud rate.
+find_package(rostest REQUIRED)
+
+catkin_add_gtest(test_ros_units
+  test/ros/test_cloud_conversion.cpp
+  test/ros/test_params_conversion.cpp
+  test/ros/test_real_time_pacer.cpp
+  test/ros/test_stats_and_health.cpp)
+if(TARGET test_ros_units)
+  # catkin links gtest but not its main().
+  target_link_libraries(test_ros_units pbf_ros_node gtest_main)
+endif()
+
+add_rostest(test/node_interface.test DEPENDENCIES pbf_node)
+add_rostest(test/particles_rate.test DEPENDENCIES pbf_node)
+add_rostest(test/node_control.test DEPENDENCIES pbf_node)
