@@ -2,6 +2,6 @@
 set(PBF_CORE_TESTS kernels neighbor_grid solver_physics solver_robustness scene)
 foreach(t ${PBF_CORE_TESTS})
   catkin_add_gtest(test_core_${t} test/core/test_${t}.cpp)
-  target_link_libraries(test_core_${t} pbf_core)
+  target_link_libraries(test_core_${t} pbf_core gtest_main)
   target_compile_definitions(test_core_${t} PRIVATE PBF_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 endforeach()

@@ -55,18 +55,27 @@ const std::vector<std::uint32_t>& NeighborGrid::build(const std::vector<Eigen::V
     for (const auto& p : points) box.extend(p);
     if (box.isEmpty()) box = Eigen::AlignedBox3f(Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero());
   }
-  // Cap the grid at ~2^21 cells per axis and 64M cells in all: beyond that a degenerate
-  // cloud (one point far away) would make the dense rank table explode; coarser cells stay
-  // exact, only slower.
+  // The dense rank table costs memory and time per cell, so the grid is capped at a few
+  // cells per point (a degenerate cloud, one point far away, must not explode it); coarser
+  // cells stay exact, only slower. Origin and size snap to blocks of 8 cells so that a
+  // moving cloud rarely changes the dimensions and the cached Morton ranks stay valid.
+  if (!box.min().allFinite() || !box.max().allFinite())
+    throw std::invalid_argument("NeighborGrid: points or domain are not finite");
+  constexpr int kBlock = 8;
+  const double max_cells = std::max<double>(8.0 * n, 32768.0);
   float cs = cell_size;
-  Eigen::Vector3f extent = box.sizes().cwiseMax(0.0f);
-  auto dimsFor = [&](float s) {
-    return Eigen::Vector3i((extent / s).array().floor().cast<int>() + 1);
-  };
-  while (dimsFor(cs).cast<double>().prod() > 64.0e6) cs *= 2.0f;
-
-  const Eigen::Vector3i dims = dimsFor(cs);
-  origin_ = box.min();
+  Eigen::Vector3f lo, hi;
+  Eigen::Vector3i dims;
+  for (int coarsen = 0;; ++coarsen) {
+    if (coarsen > 120) throw std::invalid_argument("NeighborGrid: domain too large for a grid");
+    const float block = kBlock * cs;
+    lo = (box.min() / block).array().floor() * block;
+    hi = (box.max() / block).array().floor() * block + block;
+    dims = ((hi - lo) / cs).array().round().cast<int>().max(1);
+    if (dims.cast<double>().prod() <= max_cells && (hi - lo).allFinite()) break;
+    cs *= 2.0f;
+  }
+  origin_ = lo;
   if (dims != dims_ || rank_.empty()) {
     dims_ = dims;
     rankCellsInMortonOrder();

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
 #include "pbf_ros/core/NeighborGrid.h"
 
@@ -203,8 +204,9 @@ std::vector<StepStats> PbfSolver::advance(double duration) {
 bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   stats.dt = dt;
   auto t = Clock::now();
-  predict(dt);
+  const bool predicted_finite = predict(dt);
   stats.times.other_ms += msSince(t);
+  if (!predicted_finite) return false;
 
   t = Clock::now();
   updateNeighbors(stats);
@@ -251,14 +253,17 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   return finite;
 }
 
-void PbfSolver::predict(float dt) {
+bool PbfSolver::predict(float dt) {
   const std::size_t n = size();
   const Eigen::Vector3f dv = dt * params_.gravity;
-#pragma omp parallel for schedule(static)
+  int bad = 0;
+#pragma omp parallel for reduction(+ : bad) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     velocity_[i] += dv;
     predicted_[i] = position_[i] + dt * velocity_[i];
+    bad += predicted_[i].allFinite() ? 0 : 1;
   }
+  return bad == 0;  // an overflow here would poison the grid: reject the attempt now
 }
 
 void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
@@ -331,6 +336,8 @@ void PbfSolver::computeLambdas(float& avg_error) {
   const float h = k.h, h2 = k.h2, poly6c = mass * k.poly6_coef;
   const float spiky = grad_scale * k.spiky_grad_coef;
   const float tiny2 = kCoincident * h2;
+  const bool walls = params_.wall_density && !container_.isEmpty();
+  const BoxWallDensity wall_density(container_, h);
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -363,6 +370,14 @@ void PbfSolver::computeLambdas(float& avg_error) {
       }
       gx = gi.x(), gy = gi.y(), gz = gi.z();
     }
+    if (walls) {  // the wall is static: it adds to grad_i C only, not to the sum over k != i
+      float fraction = 0.0f;
+      Eigen::Vector3f gw = Eigen::Vector3f::Zero();
+      if (wall_density.accumulate(predicted_[i], fraction, gw)) {
+        rho += params_.rest_density * fraction;
+        gx += gw.x(), gy += gw.y(), gz += gw.z();
+      }
+    }
     density_[i] = rho;
     float c = rho * inv_rho0 - 1.0f;
     if (unilateral) c = std::max(c, 0.0f);
@@ -390,6 +405,8 @@ void PbfSolver::computeDeltas() {
   const float poly6_rel = scorr ? k.poly6_coef / k.poly6(dq * dq) : 0.0f;
   const float scorr_k = params_.scorr_k, scorr_n = params_.scorr_n;
   const bool scorr_n4 = scorr_n == 4.0f;
+  const bool walls = params_.wall_density && !container_.isEmpty();
+  const BoxWallDensity wall_density(container_, h);
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -443,6 +460,11 @@ void PbfSolver::computeDeltas() {
       }
     }
     delta_[i] = grad_scale * dp;
+    if (walls && li != 0.0f) {  // lambda_i times the wall's part of grad_i C_i
+      float fraction = 0.0f;
+      Eigen::Vector3f gw = Eigen::Vector3f::Zero();
+      if (wall_density.accumulate(predicted_[i], fraction, gw)) delta_[i] += li * gw;
+    }
   }
 }
 
@@ -487,6 +509,8 @@ void PbfSolver::computeDensityAndVorticity() {
   const bool vorticity = params_.vorticity_epsilon > 0.0f;
   if (vorticity) vorticity_.resize(n);
   neighbor_count_.resize(n);
+  const bool walls = params_.wall_density && !container_.isEmpty();
+  const BoxWallDensity wall_density(container_, k.h);
 
   // Density first (vorticity needs every density).
 #pragma omp parallel for schedule(static)
@@ -499,6 +523,11 @@ void PbfSolver::computeDensityAndVorticity() {
       if (r2 >= k.h2) continue;
       rho += mass * k.poly6(r2);
       ++count;
+    }
+    if (walls) {
+      float fraction = 0.0f;
+      Eigen::Vector3f unused = Eigen::Vector3f::Zero();
+      if (wall_density.accumulate(pi, fraction, unused)) rho += params_.rest_density * fraction;
     }
     density_[i] = rho;
     neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));

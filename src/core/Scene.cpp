@@ -111,6 +111,7 @@ const std::map<std::string, Setter>& solverSetters() {
     f("scorr_k", &SolverParams::scorr_k);
     f("scorr_n", &SolverParams::scorr_n);
     f("scorr_delta_q", &SolverParams::scorr_delta_q);
+    b("wall_density", &SolverParams::wall_density);
     f("xsph_c", &SolverParams::xsph_c);
     f("vorticity_epsilon", &SolverParams::vorticity_epsilon);
     f("neighbor_skin", &SolverParams::neighbor_skin);

@@ -1,5 +1,6 @@
 // pbf_run: runs a scene headless on the ROS-free core and prints progress and statistics.
 //   pbf_run [scene name or path] [--seconds S] [--spacing D] [--scenes-dir DIR]
+//           [--set solver_key=value]...
 
 #include <chrono>
 #include <cstdio>
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   std::string scenes_dir = std::string(PBF_SOURCE_DIR) + "/config/scenes";
   double seconds = 2.0;
   float spacing = 0.0f;
+  std::string overrides;  // YAML map of solver parameters from --set key=value
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -31,8 +33,17 @@ int main(int argc, char** argv) {
     if (a == "--seconds") seconds = std::atof(value().c_str());
     else if (a == "--spacing") spacing = std::atof(value().c_str());
     else if (a == "--scenes-dir") scenes_dir = value();
+    else if (a == "--set") {
+      const std::string kv = value();
+      const auto eq = kv.find('=');
+      if (eq == std::string::npos) {
+        std::cerr << "pbf_run: --set expects key=value, got '" << kv << "'\n";
+        return 2;
+      }
+      overrides += kv.substr(0, eq) + ": " + kv.substr(eq + 1) + "\n";
+    }
     else if (a == "-h" || a == "--help") {
-      std::cout << "usage: pbf_run [scene] [--seconds S] [--spacing D] [--scenes-dir DIR]\n";
+      std::cout << "usage: pbf_run [scene] [--seconds S] [--spacing D] [--scenes-dir DIR] [--set solver_key=value]...\n";
       return 0;
     } else if (!a.empty() && a[0] == '-') {
       std::cerr << "pbf_run: unknown option " << a << "\n";
@@ -46,6 +57,7 @@ int main(int argc, char** argv) {
   try {
     pbf::Scene scene = pbf::loadSceneFile(pbf::resolveScenePath(scene_name, scenes_dir));
     if (spacing > 0.0f) scene.solver.particle_spacing = spacing;
+    if (!overrides.empty()) pbf::applySolverYaml(overrides, "--set", scene.solver);
     std::vector<Eigen::Vector3f> x, v;
     scene.initialParticles(x, v);
     pbf::PbfSolver solver;

@@ -67,7 +67,7 @@ class PbfSolver {
 
  private:
   bool attemptStep(float dt, StepStats& stats);
-  void predict(float dt);
+  bool predict(float dt);
   void updateNeighbors(StepStats& stats);
   void computeLambdas(float& avg_error);
   void computeDeltas();

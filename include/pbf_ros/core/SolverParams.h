@@ -38,6 +38,12 @@ struct SolverParams {
   float scorr_n = 4.0f;
   float scorr_delta_q = 0.2f;          // |dq| as a fraction of h
 
+  // --- boundary -------------------------------------------------------------------------
+  // Container walls lend density to particles within h (virtual fluid at rest density
+  // beyond each wall, Boundaries.h). Off: the seed's clamp alone, under which the fluid
+  // compacts against the walls.
+  bool wall_density = true;
+
   // --- velocity post-processing --------------------------------------------------------
   float xsph_c = 0.01f;                // XSPH viscosity (eq 10); 0 disables it at no cost
   float vorticity_epsilon = 0.0f;      // vorticity confinement; 0 disables it at no cost

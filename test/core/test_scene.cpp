@@ -1,0 +1,97 @@
+// Scene files: the shipped ones load; bad ones say which file, which key, what was expected.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "pbf_ros/core/Scene.h"
+
+namespace {
+
+const std::string kScenes = std::string(PBF_SOURCE_DIR) + "/config/scenes";
+
+std::string errorOf(const std::string& yaml) {
+  try {
+    pbf::loadSceneString(yaml, "bad.yaml");
+  } catch (const pbf::SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scene, EveryShippedSceneLoadsAndFillsParticlesInsideItsContainer) {
+  int count = 0;
+  for (const auto& e : std::filesystem::directory_iterator(kScenes)) {
+    if (e.path().extension() != ".yaml") continue;
+    const pbf::Scene s = pbf::loadSceneFile(e.path().string());
+    std::vector<Eigen::Vector3f> x, v;
+    s.initialParticles(x, v);
+    EXPECT_GT(x.size(), 500u) << e.path();
+    for (const auto& p : x) ASSERT_TRUE(s.container.contains(p)) << e.path();
+    ++count;
+  }
+  EXPECT_GE(count, 4);
+}
+
+TEST(Scene, ParticleCountFollowsTheSpacing) {
+  pbf::Scene s = pbf::loadSceneFile(kScenes + "/dam_break.yaml");
+  std::vector<Eigen::Vector3f> x, v;
+  s.initialParticles(x, v);
+  EXPECT_EQ(x.size(), 20u * 25u * 40u);  // 0.4 x 0.5 x 0.8 m at 0.02 m
+  s.solver.particle_spacing = 0.04f;
+  s.initialParticles(x, v);
+  EXPECT_EQ(x.size(), 10u * 12u * 20u);
+}
+
+TEST(Scene, DefaultsAreSI) {
+  const pbf::Scene s = pbf::loadSceneFile(kScenes + "/hydrostatic_tank.yaml");
+  EXPECT_FLOAT_EQ(s.solver.rest_density, 1000.0f);
+  EXPECT_FLOAT_EQ(s.solver.supportRadius(), 2.0f * s.solver.particle_spacing);
+  EXPECT_FLOAT_EQ(s.solver.particleMass(), 1000.0f * std::pow(s.solver.particle_spacing, 3.0f));
+  EXPECT_FLOAT_EQ(s.solver.gravity.z(), -9.81f);
+}
+
+TEST(Scene, BadFilesNameFileKeyAndExpectation) {
+  const std::string base = "container: {min: [0,0,0], max: [1,1,1]}\n";
+  struct Case { std::string yaml, must_contain; };
+  const std::vector<Case> cases = {
+      {"container: {min: [0,0], max: [1,1,1]}\nfluid: [{box: {min: [0,0,0], max: [1,1,1]}}]",
+       "key 'container.min': expected a list of 3 numbers"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [0.5,x,0.5]}}]", "key 'fluid[0].box.max[1]': expected a number"},
+      {base + "fluid: []", "key 'fluid': expected a non-empty list"},
+      {base + "fluid: [{cone: {}}]", "unknown key 'fluid[0].cone'"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [2,1,1]}}]", "fluid[0] reaches outside the container"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph: 0.1}", "unknown solver parameter 'solver.xsph'"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {max_iterations: many}", "key 'solver.max_iterations': expected an integer"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph_c: 5}", "xsph_c must be in [0, 1]"},
+      {"fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]", "key 'container': expected to be present"},
+      {"[1, 2", "not valid YAML"},
+  };
+  for (const auto& c : cases) {
+    const std::string err = errorOf(c.yaml);
+    EXPECT_NE(err.find("bad.yaml"), std::string::npos) << err;
+    EXPECT_NE(err.find(c.must_contain), std::string::npos) << "got: " << err;
+  }
+}
+
+TEST(Scene, UnknownSceneNameListsTheKnownOnes) {
+  try {
+    pbf::resolveScenePath("no_such_scene", kScenes);
+    FAIL();
+  } catch (const pbf::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("dam_break"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(pbf::resolveScenePath("dam_break", kScenes), kScenes + "/dam_break.yaml");
+  EXPECT_THROW(pbf::loadSceneFile("/nonexistent/x.yaml"), pbf::SceneError);
+}
+
+TEST(Scene, SolverYamlIsAllOrNothing) {
+  pbf::SolverParams p;
+  EXPECT_THROW(pbf::applySolverYaml("{xsph_c: 0.2, max_iterations: -3}", "params", p), pbf::SceneError);
+  EXPECT_FLOAT_EQ(p.xsph_c, pbf::SolverParams().xsph_c);
+  pbf::applySolverYaml("{xsph_c: 0.2, gravity: [0, 0, -1]}", "params", p);
+  EXPECT_FLOAT_EQ(p.xsph_c, 0.2f);
+  EXPECT_FLOAT_EQ(p.gravity.z(), -1.0f);
+}
+
+}  // namespace
