@@ -1,5 +1,6 @@
 #include "pbf_ros/render/FluidRenderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -15,13 +16,17 @@
 namespace pbf {
 namespace {
 
-// The filters sample a half-disc of this many offset units; wider kernels step over
-// several pixels per unit. 8 units = 100 mirrored pairs: enough taps for a smooth Gaussian,
-// few enough for llvmpipe (see the benchmark).
-constexpr int kFilterOffsetRadius = 8;
-constexpr int kMaxFilterOffsets = 256;  // MAX_OFFSETS in the filter shaders
+// The filters' kernels reach at most this many pixels (filter_kernel.glsl): a half-disc
+// of ~400 mirrored pairs, the cost bound of one pixel on llvmpipe (see pbf_render_bench).
+constexpr int kFilterOffsetRadius = 16;
+constexpr int kMaxFilterOffsets = 512;  // MAX_OFFSETS in filter_kernel.glsl
+
+// Texture units, fixed per program at set-up.
+constexpr int kUnitDepth = 0, kUnitNormals = 1, kUnitThickness = 2, kUnitCenters = 3,
+              kUnitBackground = 4;
 
 constexpr TextureFormat kFloatRed{GL_R32F, GL_RED, GL_FLOAT};
+constexpr TextureFormat kFloatRg{GL_RG32F, GL_RG, GL_FLOAT};
 constexpr TextureFormat kHalfRgba{GL_RGBA16F, GL_RGBA, GL_FLOAT};
 constexpr TextureFormat kByteRgba{GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
 
@@ -42,6 +47,19 @@ void validate(float radius, const RenderCamera& camera) {
     throw std::invalid_argument("FluidRenderer: vertical_fov must be in (0, pi) radians");
   if (!(camera.near_clip > 0 && camera.far_clip > camera.near_clip))
     throw std::invalid_argument("FluidRenderer: need 0 < near_clip < far_clip");
+  if (!camera.camera_to_world.matrix().allFinite())
+    throw std::invalid_argument("FluidRenderer: camera pose is not finite");
+}
+
+// Everything the cached background depends on.
+std::vector<float> backgroundKey(const RenderCamera& c, const RenderOptions& o) {
+  std::vector<float> key(c.camera_to_world.matrix().data(),
+                         c.camera_to_world.matrix().data() + 16);
+  key.insert(key.end(), {c.vertical_fov, static_cast<float>(c.width),
+                         static_cast<float>(c.height), o.floor_height, o.floor_tile_size,
+                         o.light_direction.x(), o.light_direction.y(), o.light_direction.z(),
+                         o.draw_background ? 1.0f : 0.0f});
+  return key;
 }
 
 }  // namespace
@@ -49,12 +67,15 @@ void validate(float radius, const RenderCamera& camera) {
 struct FluidRenderer::Impl {
   GlFunctions gl;
   ShaderProgram depth_program, thickness_program, narrow_range_program, bilateral_program,
-      normals_program, composite_program;
-  std::unique_ptr<RenderTarget> raw_depth, thickness, smoothed_depth, normals, color;
-  GLuint particle_vao = 0, particle_buffer = 0, fullscreen_vao = 0;
+      normals_program, background_program, composite_program, close_gaps_program;
+  std::unique_ptr<RenderTarget> raw_depth, closed_depth, thickness, smoothed_depth, normals,
+      background, color;
+  // Sphere centres: a buffer object read by the imposter vertex shader as a buffer texture.
+  GLuint particle_buffer = 0, particle_texture = 0, empty_vao = 0;
   VisibleParticles visible;
+  std::vector<float> background_key;  // what the cached background was drawn for
   std::vector<std::uint8_t> byte_scratch;
-  std::vector<float> float_scratch;
+  std::vector<float> float_scratch, normal_scratch;
 
   Impl(const GlBackend& backend, const std::string& dir) {
     gl.load(backend);
@@ -70,9 +91,15 @@ struct FluidRenderer::Impl {
     narrow_range_program = ShaderProgram(gl, dir, "fullscreen.vert", "narrow_range_filter.frag");
     bilateral_program = ShaderProgram(gl, dir, "fullscreen.vert", "bilateral_filter.frag");
     normals_program = ShaderProgram(gl, dir, "fullscreen.vert", "normals.frag");
+    background_program = ShaderProgram(gl, dir, "fullscreen.vert", "background.frag");
     composite_program = ShaderProgram(gl, dir, "fullscreen.vert", "composite.frag");
+    close_gaps_program = ShaderProgram(gl, dir, "fullscreen.vert", "close_gaps.frag");
 
-    // Offsets are constant: set them once per filter program.
+    // Constant uniforms: texture units and the filters' offsets.
+    for (const ShaderProgram* program : {&depth_program, &thickness_program}) {
+      program->use();
+      gl.Uniform1i(program->uniform("centers_view"), kUnitCenters);
+    }
     const std::vector<float> offsets = halfDiscOffsets(kFilterOffsetRadius);
     const GLsizei offset_count = static_cast<GLsizei>(offsets.size() / 2);
     if (offset_count > kMaxFilterOffsets)
@@ -81,47 +108,203 @@ struct FluidRenderer::Impl {
       program->use();
       gl.Uniform2fv(program->uniform("offsets"), offset_count, offsets.data());
       gl.Uniform1i(program->uniform("offset_count"), offset_count);
-      gl.Uniform1f(program->uniform("offset_units_max"), static_cast<float>(kFilterOffsetRadius));
-      gl.Uniform1i(program->uniform("depth_texture"), 0);
+      gl.Uniform1f(program->uniform("offset_units_max"),
+                   static_cast<float>(kFilterOffsetRadius));
+      gl.Uniform1i(program->uniform("depth_texture"), kUnitDepth);
     }
     normals_program.use();
-    gl.Uniform1i(normals_program.uniform("depth_texture"), 0);
+    gl.Uniform1i(normals_program.uniform("depth_texture"), kUnitDepth);
+    close_gaps_program.use();
+    gl.Uniform1i(close_gaps_program.uniform("depth_texture"), kUnitDepth);
     composite_program.use();
-    gl.Uniform1i(composite_program.uniform("depth_texture"), 0);
-    gl.Uniform1i(composite_program.uniform("normal_texture"), 1);
-    gl.Uniform1i(composite_program.uniform("thickness_texture"), 2);
+    gl.Uniform1i(composite_program.uniform("depth_texture"), kUnitDepth);
+    gl.Uniform1i(composite_program.uniform("normal_texture"), kUnitNormals);
+    gl.Uniform1i(composite_program.uniform("thickness_texture"), kUnitThickness);
+    gl.Uniform1i(composite_program.uniform("background_texture"), kUnitBackground);
     gl.UseProgram(0);
 
-    raw_depth = std::make_unique<RenderTarget>(gl, kFloatRed, true, "sphere depth");
-    thickness = std::make_unique<RenderTarget>(gl, kFloatRed, false, "thickness");
+    raw_depth = std::make_unique<RenderTarget>(gl, kFloatRg, true, "sphere depth");
+    closed_depth = std::make_unique<RenderTarget>(gl, kFloatRg, false, "gap-closed depth");
+    thickness = std::make_unique<RenderTarget>(gl, kFloatRed, false, "thickness", true);
     smoothed_depth = std::make_unique<RenderTarget>(gl, kFloatRed, false, "smoothed depth");
     normals = std::make_unique<RenderTarget>(gl, kHalfRgba, false, "normals");
+    background = std::make_unique<RenderTarget>(gl, kByteRgba, false, "background");
     color = std::make_unique<RenderTarget>(gl, kByteRgba, false, "shaded image");
 
-    gl.GenVertexArrays(1, &particle_vao);
     gl.GenBuffers(1, &particle_buffer);
-    gl.BindVertexArray(particle_vao);
-    gl.BindBuffer(GL_ARRAY_BUFFER, particle_buffer);
-    gl.EnableVertexAttribArray(0);
-    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Eigen::Vector3f), nullptr);
-    gl.VertexAttribDivisor(0, 1);  // one sphere centre per instance
-    gl.GenVertexArrays(1, &fullscreen_vao);  // core profile needs a VAO even without attributes
-    gl.BindVertexArray(0);
+    gl.GenTextures(1, &particle_texture);
+    // Every draw fetches or builds its vertices in the shader; core profile still needs a VAO.
+    gl.GenVertexArrays(1, &empty_vao);
+    gl.BindVertexArray(empty_vao);
     gl.check("FluidRenderer setup");
   }
 
   ~Impl() {
+    gl.DeleteTextures(1, &particle_texture);
     gl.DeleteBuffers(1, &particle_buffer);
-    gl.DeleteVertexArrays(1, &particle_vao);
-    gl.DeleteVertexArrays(1, &fullscreen_vao);
+    gl.DeleteVertexArrays(1, &empty_vao);
   }
 
-  void drawFullscreen() {
-    gl.BindVertexArray(fullscreen_vao);
-    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  void drawFullscreen() { gl.DrawArrays(GL_TRIANGLES, 0, 3); }
+
+  // One triangle per sphere; see sphere_imposter.vert.
+  void drawSpheres(GLsizei count) {
+    if (count > 0) gl.DrawArrays(GL_TRIANGLES, 0, 3 * count);
   }
 
-  // Reads the bound FBO's colour attachment, flipping GL's bottom-up rows to top-down.
+  // Clears the whole target, then limits drawing to the fluid's bounding rectangle: the
+  // screen-space passes cost nothing outside the fluid.
+  void beginScreenPass(const RenderTarget& target) {
+    target.bindForDrawing();
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.ClearColor(0, 0, 0, 0);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(visible.x_begin, visible.y_begin, visible.x_end - visible.x_begin,
+               visible.y_end - visible.y_begin);
+  }
+
+  void uploadParticles() {
+    gl.BindBuffer(GL_TEXTURE_BUFFER, particle_buffer);
+    gl.BufferData(GL_TEXTURE_BUFFER, visible.view_positions.size() * sizeof(Eigen::Vector4f),
+                  visible.view_positions.data(), GL_STREAM_DRAW);
+    gl.ActiveTexture(GL_TEXTURE0 + kUnitCenters);
+    gl.BindTexture(GL_TEXTURE_BUFFER, particle_texture);
+    gl.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, particle_buffer);
+  }
+
+  void drawSphereDepth(const Eigen::Matrix4f& projection, float radius) {
+    raw_depth->bindForDrawing();
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.ClearColor(0, 0, 0, 0);
+    gl.ClearDepth(1.0);
+    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.DepthMask(GL_TRUE);
+    depth_program.use();
+    gl.UniformMatrix4fv(depth_program.uniform("projection"), 1, GL_FALSE, projection.data());
+    gl.Uniform1f(depth_program.uniform("radius"), radius);
+    drawSpheres(static_cast<GLsizei>(visible.surface_count));
+    gl.Disable(GL_DEPTH_TEST);
+  }
+
+  void drawThickness(const Eigen::Matrix4f& projection, float radius) {
+    thickness->bindForDrawing();
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.ClearColor(0, 0, 0, 0);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+    gl.Enable(GL_BLEND);
+    gl.BlendEquation(GL_FUNC_ADD);
+    gl.BlendFunc(GL_ONE, GL_ONE);
+    thickness_program.use();
+    gl.UniformMatrix4fv(thickness_program.uniform("projection"), 1, GL_FALSE,
+                        projection.data());
+    gl.Uniform1f(thickness_program.uniform("radius"), radius);
+    drawSpheres(static_cast<GLsizei>(visible.view_positions.size()));
+    gl.Disable(GL_BLEND);
+  }
+
+  void smoothDepth(const RenderOptions& o, float focal, float radius) {
+    // Gaps first (close_gaps.frag), then the smoothing filter reads the result.
+    beginScreenPass(*closed_depth);
+    close_gaps_program.use();
+    gl.Uniform1f(close_gaps_program.uniform("focal_pixels"), focal);
+    gl.Uniform1f(close_gaps_program.uniform("radius"), radius);
+    gl.Uniform1f(close_gaps_program.uniform("gap_fraction"), o.gap_closing_in_radii);
+    gl.Uniform1i(close_gaps_program.uniform("max_reach"), 4);
+    raw_depth->bindColorTexture(kUnitDepth);
+    drawFullscreen();
+
+    const bool narrow = o.filter == DepthFilter::NarrowRange;
+    const ShaderProgram& program = narrow ? narrow_range_program : bilateral_program;
+    beginScreenPass(*smoothed_depth);
+    program.use();
+    gl.Uniform1f(program.uniform("focal_pixels"), focal);
+    gl.Uniform1f(program.uniform("sigma_world"), o.filter_sigma_in_radii * radius);
+    gl.Uniform1f(program.uniform("max_radius_pixels"),
+                 static_cast<float>(o.max_filter_radius_pixels));
+    if (narrow) {
+      gl.Uniform1f(program.uniform("threshold"), o.narrow_range_threshold_in_radii * radius);
+      gl.Uniform1f(program.uniform("clamp_distance"), o.narrow_range_clamp_in_radii * radius);
+    } else {
+      gl.Uniform1f(program.uniform("depth_sigma"), o.bilateral_depth_sigma_in_radii * radius);
+    }
+    closed_depth->bindColorTexture(kUnitDepth);
+    drawFullscreen();
+  }
+
+  void computeNormals(const RenderTarget& surface_depth, float focal,
+                      const Eigen::Vector2f& principal) {
+    beginScreenPass(*normals);
+    normals_program.use();
+    gl.Uniform1f(normals_program.uniform("focal_pixels"), focal);
+    gl.Uniform2f(normals_program.uniform("principal_point"), principal.x(), principal.y());
+    surface_depth.bindColorTexture(kUnitDepth);
+    drawFullscreen();
+  }
+
+  // Sets the uniforms of procedural_scene.glsl and the camera ray uniforms.
+  void setSceneUniforms(const ShaderProgram& p, const RenderCamera& camera,
+                        const RenderOptions& o, float focal, const Eigen::Vector2f& principal) {
+    const Eigen::Matrix3f world_from_view =
+        glViewFromWorld(camera).topLeftCorner<3, 3>().transpose();
+    const Eigen::Vector3f eye = camera.camera_to_world.translation();
+    const Eigen::Vector3f light = o.light_direction.normalized();
+    gl.Uniform1f(p.uniform("focal_pixels"), focal);
+    gl.Uniform2f(p.uniform("principal_point"), principal.x(), principal.y());
+    gl.UniformMatrix3fv(p.uniform("world_from_view"), 1, GL_FALSE, world_from_view.data());
+    gl.Uniform3f(p.uniform("eye_world"), eye.x(), eye.y(), eye.z());
+    gl.Uniform3f(p.uniform("light_direction"), light.x(), light.y(), light.z());
+    gl.Uniform1f(p.uniform("floor_height"), o.floor_height);
+    gl.Uniform1f(p.uniform("floor_tile_size"), o.floor_tile_size);
+  }
+
+  void updateBackground(const RenderCamera& camera, const RenderOptions& o, float focal,
+                        const Eigen::Vector2f& principal) {
+    std::vector<float> key = backgroundKey(camera, o);
+    if (key == background_key) return;  // unchanged camera and scene: keep the cached one
+    background->bindForDrawing();
+    gl.Disable(GL_SCISSOR_TEST);
+    background_program.use();
+    setSceneUniforms(background_program, camera, o, focal, principal);
+    gl.Uniform1i(background_program.uniform("draw_background"), o.draw_background ? 1 : 0);
+    drawFullscreen();
+    background_key = std::move(key);
+  }
+
+  void composite(const RenderTarget& surface_depth, const RenderCamera& camera,
+                 const RenderOptions& o, float focal, const Eigen::Vector2f& principal,
+                 float radius) {
+    // The background everywhere (a copy), then the fluid shaded inside its rectangle.
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, background->framebuffer());
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, color->framebuffer());
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.BlitFramebuffer(0, 0, camera.width, camera.height, 0, 0, camera.width, camera.height,
+                       GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    color->bindForDrawing();
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(visible.x_begin, visible.y_begin, visible.x_end - visible.x_begin,
+               visible.y_end - visible.y_begin);
+    const ShaderProgram& p = composite_program;
+    p.use();
+    setSceneUniforms(p, camera, o, focal, principal);
+    gl.Uniform1f(p.uniform("refractive_index"), o.refractive_index);
+    gl.Uniform1f(p.uniform("fresnel_f0"), o.fresnel_f0);
+    gl.Uniform3f(p.uniform("absorption"), o.absorption.x(), o.absorption.y(), o.absorption.z());
+    gl.Uniform1f(p.uniform("specular_strength"), o.specular_strength);
+    gl.Uniform1f(p.uniform("specular_exponent"), o.specular_exponent);
+    gl.Uniform1f(p.uniform("radius"), radius);
+    surface_depth.bindColorTexture(kUnitDepth);
+    normals->bindColorTexture(kUnitNormals);
+    thickness->bindColorTexture(kUnitThickness);
+    thickness->generateMipmaps();
+    background->bindColorTexture(kUnitBackground);
+    drawFullscreen();
+    gl.Disable(GL_SCISSOR_TEST);
+  }
+
+  // Reads a target's colour attachment, flipping GL's bottom-up rows to top-down.
   template <typename T>
   void readRowsTopDown(const RenderTarget& target, GLenum format, GLenum type, int channels,
                        std::vector<T>& scratch, std::vector<T>& out) {
@@ -135,6 +318,33 @@ struct FluidRenderer::Impl {
     gl.ReadPixels(0, 0, w, h, format, type, scratch.data());
     for (int y = 0; y < h; ++y)
       std::copy_n(scratch.data() + row * (h - 1 - y), row, out.data() + row * y);
+  }
+
+  void readBack(const RenderRequest& request, const RenderTarget& surface_depth,
+                RenderOutput& out) {
+    if (request.image)
+      readRowsTopDown(*color, GL_RGBA, GL_UNSIGNED_BYTE, 4, byte_scratch, out.rgba);
+    if (request.depth) {
+      readRowsTopDown(surface_depth, GL_RED, GL_FLOAT, 1, float_scratch, out.depth);
+      for (float& d : out.depth)
+        if (!(d > 0)) d = std::numeric_limits<float>::quiet_NaN();  // REP 118: no return
+    }
+    if (request.thickness)
+      readRowsTopDown(*thickness, GL_RED, GL_FLOAT, 1, float_scratch, out.thickness);
+    if (request.normals) {
+      readRowsTopDown(*normals, GL_RGBA, GL_FLOAT, 4, float_scratch, normal_scratch);
+      const std::size_t pixels = normal_scratch.size() / 4;
+      out.normals.resize(pixels * 3);
+      for (std::size_t i = 0; i < pixels; ++i) {
+        const float* n = &normal_scratch[4 * i];
+        const bool fluid = n[3] > 0.5f;
+        // GL view (x right, y up, z back) -> optical (x right, y down, z forward).
+        out.normals[3 * i + 0] = fluid ? n[0] : 0.0f;
+        out.normals[3 * i + 1] = fluid ? -n[1] : 0.0f;
+        out.normals[3 * i + 2] = fluid ? -n[2] : 0.0f;
+      }
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   }
 };
 
@@ -181,10 +391,9 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
   const Clock::time_point start = Clock::now();
   Clock::time_point mark = start;
   Impl& r = *impl_;
-  GlFunctions& gl = r.gl;
   // Each pass ends with glFinish so its time is its own (llvmpipe renders at flush time).
   auto lap = [&](double& slot) {
-    gl.Finish();
+    r.gl.Finish();
     const Clock::time_point now = Clock::now();
     slot = millisecondsBetween(mark, now);
     mark = now;
@@ -198,155 +407,55 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
   const bool need_thickness = request.image || request.thickness;
   const bool need_normals = request.image || request.normals;
   r.raw_depth->resize(w, h);
-  r.smoothed_depth->resize(w, h);
+  if (options_.filter != DepthFilter::None) {
+    r.closed_depth->resize(w, h);
+    r.smoothed_depth->resize(w, h);
+  }
   if (need_thickness) r.thickness->resize(w, h);
   if (need_normals) r.normals->resize(w, h);
-  if (need_shading) r.color->resize(w, h);
+  if (need_shading) {
+    r.background->resize(w, h);
+    r.color->resize(w, h);
+  }
 
-  // --- cull and upload ---
   selectVisibleParticles(positions, radius, camera, neighbor_counts,
                          options_.surface_particles_only, options_.interior_neighbor_count,
                          r.visible);
-  const GLsizei all_count = static_cast<GLsizei>(r.visible.view_positions.size());
-  const GLsizei surface_count = static_cast<GLsizei>(r.visible.surface_count);
   out.particles_in_view = r.visible.view_positions.size();
   out.particles_in_depth = r.visible.surface_count;
-  gl.BindBuffer(GL_ARRAY_BUFFER, r.particle_buffer);
-  gl.BufferData(GL_ARRAY_BUFFER, all_count * sizeof(Eigen::Vector3f),
-                r.visible.view_positions.data(), GL_STREAM_DRAW);
+  r.uploadParticles();
   lap(out.timings.cull_upload);
 
   const Eigen::Matrix4f projection = glProjection(camera);
-  const PinholeIntrinsics k = intrinsicsOf(camera);
-  const float focal = static_cast<float>(k.fy);
+  const float focal = static_cast<float>(intrinsicsOf(camera).fy);
+  const Eigen::Vector2f principal(0.5f * w, 0.5f * h);  // window coordinates
 
-  // --- 1. sphere depth ---
-  r.raw_depth->bindForDrawing();
-  gl.ClearColor(0, 0, 0, 0);
-  gl.ClearDepth(1.0);
-  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  gl.Enable(GL_DEPTH_TEST);
-  gl.DepthFunc(GL_LESS);
-  gl.DepthMask(GL_TRUE);
-  gl.Disable(GL_BLEND);
-  r.depth_program.use();
-  gl.UniformMatrix4fv(r.depth_program.uniform("projection"), 1, GL_FALSE, projection.data());
-  gl.Uniform1f(r.depth_program.uniform("radius"), radius);
-  gl.BindVertexArray(r.particle_vao);
-  if (surface_count > 0) gl.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, surface_count);
-  gl.Disable(GL_DEPTH_TEST);
+  r.drawSphereDepth(projection, radius);
   lap(out.timings.depth);
-
-  // --- 2. thickness ---
   if (need_thickness) {
-    r.thickness->bindForDrawing();
-    gl.Clear(GL_COLOR_BUFFER_BIT);
-    gl.Enable(GL_BLEND);
-    gl.BlendEquation(GL_FUNC_ADD);
-    gl.BlendFunc(GL_ONE, GL_ONE);
-    r.thickness_program.use();
-    gl.UniformMatrix4fv(r.thickness_program.uniform("projection"), 1, GL_FALSE,
-                        projection.data());
-    gl.Uniform1f(r.thickness_program.uniform("radius"), radius);
-    gl.BindVertexArray(r.particle_vao);
-    if (all_count > 0) gl.DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, all_count);
-    gl.Disable(GL_BLEND);
+    r.drawThickness(projection, radius);
     lap(out.timings.thickness);
   }
-
-  // --- 3. depth smoothing ---
   const RenderTarget* surface_depth = r.raw_depth.get();
   if (options_.filter != DepthFilter::None) {
-    const bool narrow = options_.filter == DepthFilter::NarrowRange;
-    const ShaderProgram& program = narrow ? r.narrow_range_program : r.bilateral_program;
-    r.smoothed_depth->bindForDrawing();
-    program.use();
-    gl.Uniform1f(program.uniform("focal_pixels"), focal);
-    gl.Uniform1f(program.uniform("sigma_world"), options_.filter_sigma_in_radii * radius);
-    gl.Uniform1f(program.uniform("max_radius_pixels"),
-                 static_cast<float>(options_.max_filter_radius_pixels));
-    if (narrow) {
-      gl.Uniform1f(program.uniform("threshold"),
-                   options_.narrow_range_threshold_in_radii * radius);
-      gl.Uniform1f(program.uniform("clamp_distance"),
-                   options_.narrow_range_clamp_in_radii * radius);
-    } else {
-      gl.Uniform1f(program.uniform("depth_sigma"),
-                   options_.bilateral_depth_sigma_in_radii * radius);
-    }
-    r.raw_depth->bindColorTexture(0);
-    r.drawFullscreen();
+    r.smoothDepth(options_, focal, radius);
     surface_depth = r.smoothed_depth.get();
     lap(out.timings.filter);
   }
-
-  // --- 4. normals ---
-  const Eigen::Vector2f principal(0.5f * w, 0.5f * h);  // window coordinates
   if (need_normals) {
-    r.normals->bindForDrawing();
-    r.normals_program.use();
-    gl.Uniform1f(r.normals_program.uniform("focal_pixels"), focal);
-    gl.Uniform2f(r.normals_program.uniform("principal_point"), principal.x(), principal.y());
-    surface_depth->bindColorTexture(0);
-    r.drawFullscreen();
+    r.computeNormals(*surface_depth, focal, principal);
     lap(out.timings.normals);
   }
-
-  // --- 5. composite ---
   if (need_shading) {
-    const ShaderProgram& p = r.composite_program;
-    r.color->bindForDrawing();
-    p.use();
-    const Eigen::Matrix3f world_from_view =
-        glViewFromWorld(camera).topLeftCorner<3, 3>().transpose();
-    const Eigen::Vector3f eye = camera.camera_to_world.translation();
-    const Eigen::Vector3f light = options_.light_direction.normalized();
-    gl.Uniform1f(p.uniform("focal_pixels"), focal);
-    gl.Uniform2f(p.uniform("principal_point"), principal.x(), principal.y());
-    gl.UniformMatrix3fv(p.uniform("world_from_view"), 1, GL_FALSE, world_from_view.data());
-    gl.Uniform3f(p.uniform("eye_world"), eye.x(), eye.y(), eye.z());
-    gl.Uniform1f(p.uniform("refractive_index"), options_.refractive_index);
-    gl.Uniform1f(p.uniform("fresnel_f0"), options_.fresnel_f0);
-    gl.Uniform3f(p.uniform("absorption"), options_.absorption.x(), options_.absorption.y(),
-                 options_.absorption.z());
-    gl.Uniform3f(p.uniform("light_direction"), light.x(), light.y(), light.z());
-    gl.Uniform1f(p.uniform("specular_strength"), options_.specular_strength);
-    gl.Uniform1f(p.uniform("specular_exponent"), options_.specular_exponent);
-    gl.Uniform1f(p.uniform("floor_height"), options_.floor_height);
-    gl.Uniform1f(p.uniform("floor_tile_size"), options_.floor_tile_size);
-    gl.Uniform1i(p.uniform("draw_background"), options_.draw_background ? 1 : 0);
-    surface_depth->bindColorTexture(0);
-    r.normals->bindColorTexture(1);
-    r.thickness->bindColorTexture(2);
-    r.drawFullscreen();
+    r.updateBackground(camera, options_, focal, principal);
+    r.composite(*surface_depth, camera, options_, focal, principal, radius);
     lap(out.timings.composite);
   }
-  gl.check("FluidRenderer::render passes");
+  r.gl.Disable(GL_SCISSOR_TEST);
+  r.gl.check("FluidRenderer::render passes");
 
-  // --- readback, rows top-down ---
-  if (request.image)
-    r.readRowsTopDown(*r.color, GL_RGBA, GL_UNSIGNED_BYTE, 4, r.byte_scratch, out.rgba);
-  if (request.depth) {
-    r.readRowsTopDown(*surface_depth, GL_RED, GL_FLOAT, 1, r.float_scratch, out.depth);
-    for (float& d : out.depth)
-      if (!(d > 0)) d = std::numeric_limits<float>::quiet_NaN();  // REP 118: no return
-  }
-  if (request.thickness)
-    r.readRowsTopDown(*r.thickness, GL_RED, GL_FLOAT, 1, r.float_scratch, out.thickness);
-  if (request.normals) {
-    std::vector<float> rgba;
-    r.readRowsTopDown(*r.normals, GL_RGBA, GL_FLOAT, 4, r.float_scratch, rgba);
-    out.normals.resize(static_cast<std::size_t>(w) * h * 3);
-    for (std::size_t i = 0, n = static_cast<std::size_t>(w) * h; i < n; ++i) {
-      const bool fluid = rgba[4 * i + 3] > 0.5f;
-      // GL view (x right, y up, z back) -> optical (x right, y down, z forward).
-      out.normals[3 * i + 0] = fluid ? rgba[4 * i + 0] : 0.0f;
-      out.normals[3 * i + 1] = fluid ? -rgba[4 * i + 1] : 0.0f;
-      out.normals[3 * i + 2] = fluid ? -rgba[4 * i + 2] : 0.0f;
-    }
-  }
-  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl.check("FluidRenderer::render readback");
+  r.readBack(request, *surface_depth, out);
+  r.gl.check("FluidRenderer::render readback");
   lap(out.timings.readback);
   out.timings.total = millisecondsBetween(start, Clock::now());
   out.rendered = true;

@@ -20,6 +20,8 @@ class GlBackend;
   X(PFNGLCLEARDEPTHPROC, ClearDepth)                                   \
   X(PFNGLCLEARPROC, Clear)                                             \
   X(PFNGLENABLEPROC, Enable)                                           \
+  X(PFNGLSCISSORPROC, Scissor)                                         \
+  X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                         \
   X(PFNGLDISABLEPROC, Disable)                                         \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                     \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                     \
@@ -36,6 +38,8 @@ class GlBackend;
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                             \
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                   \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                             \
+  X(PFNGLTEXBUFFERPROC, TexBuffer)                                     \
+  X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                           \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                         \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                   \
   X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                         \

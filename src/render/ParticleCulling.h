@@ -11,11 +11,16 @@
 namespace pbf {
 
 struct VisibleParticles {
-  // Sphere centres in GL view space (x right, y up, z backwards): surface particles in
-  // [0, surface_count), interior ones after them.
-  std::vector<Eigen::Vector3f> view_positions;
+  // Sphere centres in GL view space (x right, y up, z backwards; w unused, it pads to the
+  // RGBA32F texel of a GL 3.3 buffer texture): surface particles in [0, surface_count),
+  // interior ones after them.
+  std::vector<Eigen::Vector4f> view_positions;
   std::size_t surface_count = 0;
-  std::vector<Eigen::Vector3f> interior_scratch;  // reused between frames
+  // Window-space pixel rectangle (GL: x right, y up from the bottom row) that holds every
+  // visible sphere's silhouette; the screen-space passes run only inside it. Empty
+  // (x_end <= x_begin) when nothing is visible.
+  int x_begin = 0, y_begin = 0, x_end = 0, y_end = 0;
+  std::vector<Eigen::Vector4f> interior_scratch;  // reused between frames
 };
 
 // neighbor_counts may be null (then every particle counts as surface). A particle is

@@ -6,8 +6,9 @@
 namespace pbf {
 
 RenderTarget::RenderTarget(const GlFunctions& gl, TextureFormat color, bool with_depth,
-                           const char* name)
-    : gl_(gl), color_format_(color), with_depth_(with_depth), name_(name) {
+                           const char* name, bool mipmapped)
+    : gl_(gl), color_format_(color), with_depth_(with_depth), mipmapped_(mipmapped),
+      name_(name) {
   gl_.GenFramebuffers(1, &framebuffer_);
   gl_.GenTextures(1, &color_);
   if (with_depth_) gl_.GenTextures(1, &depth_);
@@ -23,13 +24,16 @@ void RenderTarget::resize(int width, int height) {
   if (width == width_ && height == height_) return;
   width_ = width;
   height_ = height;
-  // Nearest sampling everywhere: the passes read exact texels (texelFetch) and filtering
-  // across the fluid silhouette would blend depth with background.
+  // Nearest sampling unless mipmapped: the passes read exact texels (texelFetch), and
+  // filtering across the fluid silhouette would blend depth with background. (The
+  // mipmapped raw depth carries a coverage channel so its averages can be undone.)
   gl_.BindTexture(GL_TEXTURE_2D, color_);
   gl_.TexImage2D(GL_TEXTURE_2D, 0, color_format_.internal_format, width, height, 0,
                  color_format_.format, color_format_.type, nullptr);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                    mipmapped_ ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
+  gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, mipmapped_ ? GL_LINEAR : GL_NEAREST);
+  if (mipmapped_) gl_.GenerateMipmap(GL_TEXTURE_2D);  // allocate the levels
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   if (with_depth_) {
@@ -53,6 +57,11 @@ void RenderTarget::resize(int width, int height) {
 void RenderTarget::bindForDrawing() const {
   gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   gl_.Viewport(0, 0, width_, height_);
+}
+
+void RenderTarget::generateMipmaps() const {
+  gl_.BindTexture(GL_TEXTURE_2D, color_);
+  gl_.GenerateMipmap(GL_TEXTURE_2D);
 }
 
 void RenderTarget::bindColorTexture(int unit) const {

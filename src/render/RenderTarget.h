@@ -14,7 +14,11 @@ struct TextureFormat {
 
 class RenderTarget {
  public:
-  RenderTarget(const GlFunctions& gl, TextureFormat color, bool with_depth, const char* name);
+  // mipmapped: the colour texture is sampled with linear filtering from mipmap levels that
+  // generateMipmaps() builds (the depth filters' prefiltered wide kernels); otherwise it
+  // is read texel by texel.
+  RenderTarget(const GlFunctions& gl, TextureFormat color, bool with_depth, const char* name,
+               bool mipmapped = false);
   ~RenderTarget();
   RenderTarget(const RenderTarget&) = delete;
   RenderTarget& operator=(const RenderTarget&) = delete;
@@ -24,6 +28,7 @@ class RenderTarget {
   // Binds the FBO and sets the viewport to its size.
   void bindForDrawing() const;
   void bindColorTexture(int unit) const;
+  void generateMipmaps() const;
 
   GLuint framebuffer() const { return framebuffer_; }
   int width() const { return width_; }
@@ -33,6 +38,7 @@ class RenderTarget {
   const GlFunctions& gl_;
   TextureFormat color_format_;
   bool with_depth_;
+  bool mipmapped_;
   const char* name_;
   GLuint framebuffer_ = 0, color_ = 0, depth_ = 0;
   int width_ = 0, height_ = 0;

@@ -16,8 +16,29 @@ std::string readFile(const std::string& path) {
   return text.str();
 }
 
-GLuint compile(const GlFunctions& gl, GLenum stage, const std::string& path) {
-  const std::string source = readFile(path);
+// GLSL has no #include; shaders that share code (the procedural scene) use
+// `#include "file.glsl"` on a line of its own, resolved here, one level deep, relative to
+// the shader directory.
+std::string readWithIncludes(const std::string& dir, const std::string& path) {
+  std::istringstream lines(readFile(path));
+  std::ostringstream source;
+  const std::string directive = "#include \"";
+  for (std::string line; std::getline(lines, line);) {
+    if (line.compare(0, directive.size(), directive) == 0) {
+      const std::size_t end = line.find('"', directive.size());
+      if (end == std::string::npos)
+        throw std::runtime_error("shader " + path + ": malformed line '" + line + "'");
+      source << readFile(dir + "/" + line.substr(directive.size(), end - directive.size()));
+    } else {
+      source << line << '\n';
+    }
+  }
+  return source.str();
+}
+
+GLuint compile(const GlFunctions& gl, GLenum stage, const std::string& dir,
+               const std::string& path) {
+  const std::string source = readWithIncludes(dir, path);
   const GLuint shader = gl.CreateShader(stage);
   const char* text = source.c_str();
   gl.ShaderSource(shader, 1, &text, nullptr);
@@ -42,10 +63,10 @@ ShaderProgram::ShaderProgram(const GlFunctions& gl, const std::string& shader_di
     : gl_(&gl) {
   const std::string vertex_path = shader_dir + "/" + vertex_file;
   const std::string fragment_path = shader_dir + "/" + fragment_file;
-  const GLuint vertex = compile(gl, GL_VERTEX_SHADER, vertex_path);
+  const GLuint vertex = compile(gl, GL_VERTEX_SHADER, shader_dir, vertex_path);
   GLuint fragment = 0;
   try {
-    fragment = compile(gl, GL_FRAGMENT_SHADER, fragment_path);
+    fragment = compile(gl, GL_FRAGMENT_SHADER, shader_dir, fragment_path);
   } catch (...) {
     gl.DeleteShader(vertex);
     throw;
