@@ -28,7 +28,7 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   FluidConfig config = startupConfig(scene);
   config.scene = scene_name;
-  const pbf::SolverParams params = configToSolverParams(config);
+  const pbf::SolverParams params = configToSolverParams(config, scene.solver);
   const std::string invalid = params.validate();
   if (!invalid.empty()) throw std::runtime_error("unusable solver parameters: " + invalid);
 

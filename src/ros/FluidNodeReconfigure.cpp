@@ -51,7 +51,7 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
   }
   rebuild = rebuild || (level & level::kResolution);
 
-  const pbf::SolverParams params = configToSolverParams(config);
+  const pbf::SolverParams params = configToSolverParams(config, scene.solver);
   const std::string invalid = params.validate();
   if (!invalid.empty()) {
     refuse("reconfigure refused: " + invalid + "; previous parameters kept");

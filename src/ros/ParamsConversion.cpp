@@ -25,6 +25,7 @@ void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
   c.density_tolerance = p.density_tolerance;
   c.cfm_epsilon = p.cfm_epsilon;
   c.unilateral_constraint = p.unilateral_constraint;
+  c.wall_density = p.wall_density;
   c.scorr_k = p.scorr_k;
   c.scorr_n = p.scorr_n;
   c.scorr_delta_q = p.scorr_delta_q;
@@ -33,8 +34,8 @@ void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
   c.neighbor_skin = p.neighbor_skin;
 }
 
-pbf::SolverParams configToSolverParams(const FluidConfig& c) {
-  pbf::SolverParams p;
+pbf::SolverParams configToSolverParams(const FluidConfig& c, pbf::SolverParams base) {
+  pbf::SolverParams& p = base;
   p.particle_spacing = static_cast<float>(c.particle_spacing);
   p.rest_density = static_cast<float>(c.rest_density);
   p.support_radius_factor = static_cast<float>(c.support_radius_factor);
@@ -52,6 +53,7 @@ pbf::SolverParams configToSolverParams(const FluidConfig& c) {
   p.density_tolerance = static_cast<float>(c.density_tolerance);
   p.cfm_epsilon = static_cast<float>(c.cfm_epsilon);
   p.unilateral_constraint = c.unilateral_constraint;
+  p.wall_density = c.wall_density;
   p.scorr_k = static_cast<float>(c.scorr_k);
   p.scorr_n = static_cast<float>(c.scorr_n);
   p.scorr_delta_q = static_cast<float>(c.scorr_delta_q);

@@ -52,6 +52,10 @@ double RealTimePacer::achievedFactor() const {
   return (samples_.back().second - samples_.front().second) / dwall;
 }
 
+bool RealTimePacer::settled() const {
+  return samples_.size() >= 2 && samples_.back().first - samples_.front().first >= 0.5 * window_;
+}
+
 bool RealTimePacer::fallingBehind(double wall) const {
   return factor_ > 0.0 && wall - last_drop_wall_ < window_;
 }

@@ -71,8 +71,13 @@ void FluidNode::stepOnce() {
   nan_recoveries_ += static_cast<std::uint32_t>(last_stats_.nan_retries);
   stepped_since_resume_ = true;
   const double wall = wallNow();
-  pacer_.afterStep(wall, sim_clock_);
-  if (pacer_.fallingBehind(wall)) {
+  if (paused_) {
+    pacer_.restart(wall, sim_clock_);  // a ~step while paused is not a pacing sample
+  } else {
+    pacer_.afterStep(wall, sim_clock_);
+  }
+  if (!paused_ && pacer_.factor() > 0.0 && pacer_.settled() &&
+      pacer_.achievedFactor() < thresholds_.rtf_warn_ratio * pacer_.factor()) {
     ROS_WARN_THROTTLE(10.0, "pbf_node: cannot keep up with real-time factor %g: achieving %.3g",
                       pacer_.factor(), pacer_.achievedFactor());
   }
@@ -202,7 +207,7 @@ void FluidNode::updateHealth() {
   std::lock_guard<std::mutex> lock(health_mutex_);
   health_.scene = scene_.name;
   health_.paused = paused_;
-  health_.running = stepped_since_resume_;
+  health_.running = stepped_since_resume_ && pacer_.settled();
   health_.requested_factor = pacer_.factor();
   health_.achieved_factor = paused_ ? 0.0 : pacer_.achievedFactor();
   health_.sim_time = solver_->time();

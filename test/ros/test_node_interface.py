@@ -10,7 +10,6 @@ import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from sensor_msgs.msg import PointField
 from tf2_msgs.msg import TFMessage
-from visualization_msgs.msg import MarkerArray
 
 from fluid_test_util import NODE, Latest, cloud_listener, cloud_points, stats_listener
 
@@ -67,9 +66,11 @@ class NodeInterfaceTest(unittest.TestCase):
             stats.close()
 
     def test_04_container_markers_are_latched(self):
-        markers = Latest(NODE + '/markers', MarkerArray)
+        # Raw bytes: visualization_msgs has no Python package in the Debian ROS we build on;
+        # the type is checked in test_01.
+        markers = Latest(NODE + '/markers', rospy.AnyMsg)
         m = markers.current_or_next(timeout=10.0)
-        self.assertTrue(any(mk.ns == 'container' for mk in m.markers))
+        self.assertIn(b'container', m._buff)
         markers.close()
 
     def test_05_static_transform_world_to_fluid_domain(self):

@@ -25,6 +25,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   p.max_iterations = 7;
   p.adaptive_time_step = false;
   p.unilateral_constraint = false;
+  p.wall_density = false;
   p.scorr_k = 0.1f;
   p.neighbor_skin = 0.3f;
   FluidConfig c = FluidConfig::__getDefault__();
@@ -38,6 +39,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   EXPECT_EQ(q.max_iterations, 7);
   EXPECT_FALSE(q.adaptive_time_step);
   EXPECT_FALSE(q.unilateral_constraint);
+  EXPECT_FALSE(q.wall_density);
   EXPECT_FLOAT_EQ(q.scorr_k, 0.1f);
   EXPECT_FLOAT_EQ(q.neighbor_skin, 0.3f);
 }

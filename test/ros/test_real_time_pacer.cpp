@@ -87,3 +87,12 @@ TEST(RealTimePacer, BadFactorFallsBackToRealTime) {
   pacer.setFactor(std::numeric_limits<double>::quiet_NaN());
   EXPECT_DOUBLE_EQ(pacer.factor(), 1.0);
 }
+
+TEST(RealTimePacer, SettlesAfterHalfAWindow) {
+  RealTimePacer pacer(0.1, 2.0);
+  pacer.restart(0.0, 0.0);
+  pacer.afterStep(0.5, 0.5);
+  EXPECT_FALSE(pacer.settled());
+  pacer.afterStep(1.0, 1.0);
+  EXPECT_TRUE(pacer.settled());
+}

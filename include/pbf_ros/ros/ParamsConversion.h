@@ -18,8 +18,10 @@ namespace pbf_ros {
 // Node-level fields (scene, rates, real-time factor) are left untouched.
 void solverParamsToConfig(const pbf::SolverParams& params, FluidConfig& config);
 
-// Reads the solver fields of `config` into a SolverParams (no checking).
-pbf::SolverParams configToSolverParams(const FluidConfig& config);
+// Reads the solver fields of `config` over `base` (no checking). Fields Fluid.cfg does not
+// have keep base's value, so a scene's settings survive for them.
+pbf::SolverParams configToSolverParams(const FluidConfig& config,
+                                       pbf::SolverParams base = pbf::SolverParams());
 
 // Makes `config` usable, in place:
 //  - a non-finite number is refused: the field takes its value from `in_force` (the config

@@ -38,6 +38,9 @@ class RealTimePacer {
 
   // Simulated seconds per wall second over the window (0 before two samples).
   double achievedFactor() const;
+  // True once the samples span half a window: before that the factor is too noisy to judge
+  // (the first steps after start or reset are slow: allocations, cold caches).
+  bool settled() const;
   // True when debt was dropped within the last window: the requested factor is not reached.
   bool fallingBehind(double wall) const;
   // Simulated seconds that were not simulated because the simulation could not keep up.
