@@ -1,0 +1,17 @@
+#pragma once
+// What every pbf_bench study needs to know: where to write, how thorough to be.
+
+#include <string>
+
+namespace pbf_bench {
+
+struct BenchOptions {
+  std::string out_dir = "bench_out";
+  std::string scenes_dir;       // config/scenes
+  std::string reference_csv;    // Martin & Moyce surge front
+  bool quick = false;           // smaller, shorter runs for fast iteration (not for figures)
+  bool progress = true;
+  int threads = 0;              // 0: OpenMP default
+};
+
+}  // namespace pbf_bench

@@ -1,0 +1,86 @@
+#include "bench/ScalingStudy.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "bench/BenchScenes.h"
+#include "bench/CsvWriter.h"
+#include "bench/Progress.h"
+#include "bench/SceneRun.h"
+
+namespace pbf_bench {
+
+double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  if (n < 2) return NAN;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double lx = std::log(x[k]), ly = std::log(y[k]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+void runScalingStudy(const BenchOptions& o) {
+  std::printf("\n== scaling: ms per step vs particles and threads ==\n");
+  // The dam-break column (0.4 x 0.5 x 0.8 m = 0.16 m^3) at the spacing giving N particles,
+  // timed at rest right after release: every particle has its full neighbourhood, the
+  // expensive case. 4 fixed iterations, fixed dt 1/400 s (as pbf_step_benchmark).
+  const std::vector<int> counts = o.quick ? std::vector<int>{10000, 20000, 40000}
+                                          : std::vector<int>{10000, 20000, 40000, 80000, 160000, 320000};
+  const int warmup = 2, timed = o.quick ? 3 : 5;
+  const int max_threads = omp_get_max_threads();
+  std::vector<int> threads = {1, 2};
+  if (max_threads < 2) threads = {1};
+  CsvWriter csv(o.out_dir + "/scaling.csv",
+                {"target_particles", "particles", "threads", "ms_per_step", "neighbors_ms", "solve_ms",
+                 "viscosity_ms", "other_ms"});
+  std::printf("%10s %8s %12s %12s %10s\n", "particles", "threads", "ms/step", "neighbors", "solve");
+  for (int t : threads) {
+    std::vector<double> ns, ms;
+    for (int count : counts) {
+      omp_set_num_threads(t);
+      const float spacing = static_cast<float>(std::cbrt(0.16 / count));
+      pbf::Scene scene = damBreakScene(o.scenes_dir, spacing);
+      scene.solver.adaptive_time_step = false;
+      scene.solver.time_step = 1.0f / 400.0f;
+      scene.solver.min_iterations = scene.solver.max_iterations = 4;
+      scene.solver.density_tolerance = 0.0f;
+      auto solver = makeSolver(scene);
+      Progress progress("scaling " + std::to_string(count / 1000) + "k, " + std::to_string(t) + " thread(s)",
+                        o.progress);
+      std::vector<double> total, nb, solve, visc, other;
+      for (int k = 0; k < warmup + timed; ++k) {
+        const pbf::StepStats st = solver->step();
+        progress.update(double(k + 1) / (warmup + timed));
+        if (k < warmup) continue;
+        total.push_back(st.times.total_ms);
+        nb.push_back(st.times.neighbors_ms);
+        solve.push_back(st.times.solve_ms);
+        visc.push_back(st.times.viscosity_vorticity_ms);
+        other.push_back(st.times.other_ms);
+      }
+      progress.done();
+      // Median of the timed steps: robust against another process stealing a core briefly.
+      auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+      };
+      const double m = median(total);
+      ns.push_back(double(solver->size()));
+      ms.push_back(m);
+      csv.row({(long long)count, (long long)solver->size(), (long long)t, m, median(nb), median(solve),
+               median(visc), median(other)});
+      std::printf("%10zu %8d %12.1f %12.1f %10.1f\n", solver->size(), t, m, median(nb), median(solve));
+      std::fflush(stdout);
+    }
+    std::printf("threads %d: log-log slope of ms/step against particles = %.3f\n", t, logLogSlope(ns, ms));
+  }
+  omp_set_num_threads(max_threads);
+}
+
+}  // namespace pbf_bench

@@ -1,0 +1,44 @@
+#include "bench/SceneRun.h"
+
+#include <cstdio>
+
+#include "bench/Progress.h"
+
+namespace pbf_bench {
+
+std::unique_ptr<pbf::PbfSolver> makeSolver(const pbf::Scene& scene) {
+  std::vector<Eigen::Vector3f> x, v;
+  scene.initialParticles(x, v);
+  auto solver = std::make_unique<pbf::PbfSolver>();
+  solver->setParams(scene.solver);
+  solver->setContainer(scene.container);
+  solver->setParticles(x, v);
+  return solver;
+}
+
+RunTotals runUntil(pbf::PbfSolver& solver, double t_end, const StepObserver& observe,
+                   Progress* progress) {
+  RunTotals totals;
+  const double t0 = solver.time();
+  while (solver.time() < t_end - 1e-9) {
+    const pbf::StepStats st = solver.step();
+    totals.step_wall_seconds += st.times.total_ms * 1e-3;
+    totals.nan_retries += st.nan_retries;
+    if (st.failed) {
+      totals.failed = true;
+      break;
+    }
+    ++totals.steps;
+    totals.iterations += st.iterations;
+    if (observe) observe(solver, st);
+    if (progress) {
+      char detail[64];
+      std::snprintf(detail, sizeof detail, "t=%.3f s, %lld steps", solver.time(), totals.steps);
+      progress->update((solver.time() - t0) / std::max(1e-9, t_end - t0), detail);
+    }
+  }
+  totals.sim_seconds = solver.time() - t0;
+  return totals;
+}
+
+}  // namespace pbf_bench

@@ -1,0 +1,43 @@
+#pragma once
+// The hostile-case matrix of pbf_stress, shared with the reduced gtest (test/tools/).
+// Each case builds a solver in a bad situation and runs it; pass means: no NaN/Inf in any
+// position, velocity or density; no particle outside the container; kinetic energy within
+// EnergyBound (see EnergyBound.h for the bound and why); every step completed.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pbf_ros/core/PbfSolver.h"
+
+namespace pbf_bench {
+
+class Progress;
+
+struct StressCase {
+  std::string name;
+  std::string setup;  // one line: scene, particles, the hostile setting
+  std::function<std::unique_ptr<pbf::PbfSolver>()> make;
+  long long steps = 0;     // run exactly this many solver steps, or else
+  double seconds = 0.0;    // this much simulated time
+};
+
+struct StressResult {
+  std::string name;
+  std::size_t particles = 0;
+  long long steps = 0;
+  double sim_seconds = 0.0, wall_seconds = 0.0;
+  bool finite = true, inside = true, energy_ok = true, completed = true;
+  long long outside_max = 0;        // most particles outside at any step
+  double max_kinetic = 0.0, bound = 0.0;  // [J]
+  std::string first_failure;        // what failed first, at which step
+  bool pass() const { return finite && inside && energy_ok && completed; }
+};
+
+// reduced: the same kinds of case, short enough for ctest (well under a minute).
+std::vector<StressCase> stressCases(bool reduced);
+
+StressResult runStressCase(const StressCase& c, Progress* progress);
+
+}  // namespace pbf_bench

@@ -1,0 +1,102 @@
+// pbf_stress: the hostile-case matrix (issue 5). No ROS. Prints one row per case with
+// pass/fail and writes stress.csv; exits 1 when any case fails.
+//
+//   pbf_stress [--out DIR] [--reduced] [--only SUBSTRING] [--list] [--no-progress]
+//
+// Pass means: no NaN/Inf in any position, velocity or density; no particle outside the
+// container; kinetic energy <= E_kin,0 + E_pot,0 + N m g H (see bench/EnergyBound.h for
+// why); every step completed. --reduced is the short matrix ctest runs.
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "bench/CsvWriter.h"
+#include "bench/Progress.h"
+#include "bench/StressCases.h"
+
+namespace {
+
+void usage(std::ostream& out) {
+  out << "usage: pbf_stress [--out DIR] [--reduced] [--only SUBSTRING] [--list] [--no-progress]\n";
+}
+
+const char* mark(bool ok) { return ok ? "ok" : "FAIL"; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out_dir, only;
+  bool reduced = false, list = false, progress = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::cerr << "pbf_stress: " << a << " needs a value\n";
+        usage(std::cerr);
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--out") out_dir = value();
+    else if (a == "--reduced") reduced = true;
+    else if (a == "--only") only = value();
+    else if (a == "--list") list = true;
+    else if (a == "--no-progress") progress = false;
+    else if (a == "-h" || a == "--help") {
+      usage(std::cout);
+      return 0;
+    } else {
+      std::cerr << "pbf_stress: unknown argument '" << a << "'\n";
+      usage(std::cerr);
+      return 2;
+    }
+  }
+  try {
+    const auto cases = pbf_bench::stressCases(reduced);
+    if (list) {
+      for (const auto& c : cases) std::printf("%-30s %s\n", c.name.c_str(), c.setup.c_str());
+      return 0;
+    }
+    std::unique_ptr<pbf_bench::CsvWriter> csv;
+    if (!out_dir.empty()) {
+      std::filesystem::create_directories(out_dir);
+      csv = std::make_unique<pbf_bench::CsvWriter>(
+          out_dir + (reduced ? "/stress_reduced.csv" : "/stress.csv"),
+          std::vector<std::string>{"case", "setup", "particles", "steps", "sim_s", "wall_s", "finite",
+                                   "inside", "energy_ok", "completed", "max_kinetic_J", "bound_J",
+                                   "pass", "first_failure"});
+    }
+    std::printf("pbf_stress: %zu cases%s\n", cases.size(), reduced ? " (reduced)" : "");
+    std::printf("%-28s %6s %7s %7s %6s %6s %6s %9s %9s %6s\n", "case", "N", "steps", "sim[s]", "finite",
+                "inside", "done", "Ekin/bnd", "wall[s]", "result");
+    int failures = 0, run = 0;
+    for (const auto& c : cases) {
+      if (!only.empty() && c.name.find(only) == std::string::npos) continue;
+      ++run;
+      pbf_bench::Progress p(c.name, progress);
+      const pbf_bench::StressResult r = pbf_bench::runStressCase(c, &p);
+      p.done();
+      failures += r.pass() ? 0 : 1;
+      std::printf("%-28s %6zu %7lld %7.2f %6s %6s %6s %9.3f %9.1f %6s\n", r.name.c_str(), r.particles, r.steps,
+                  r.sim_seconds, mark(r.finite), mark(r.inside), mark(r.completed),
+                  r.max_kinetic / r.bound, r.wall_seconds, r.pass() ? "PASS" : "FAIL");
+      if (!r.pass()) std::printf("    first failure: %s\n", r.first_failure.c_str());
+      std::fflush(stdout);
+      if (csv)
+        csv->row({r.name, c.setup, (long long)r.particles, r.steps, r.sim_seconds, r.wall_seconds,
+                  (long long)r.finite, (long long)r.inside, (long long)r.energy_ok, (long long)r.completed,
+                  r.max_kinetic, r.bound, (long long)r.pass(), r.first_failure});
+    }
+    if (run == 0) {
+      std::cerr << "pbf_stress: no case matches '" << only << "' (see --list)\n";
+      return 2;
+    }
+    std::printf("pbf_stress: %d of %d cases passed\n", run - failures, run);
+    return failures ? 1 : 0;
+  } catch (const std::exception& e) {
+    std::cerr << "\npbf_stress: " << e.what() << "\n";
+    return 1;
+  }
+}
