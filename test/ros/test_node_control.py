@@ -126,6 +126,25 @@ class NodeControlTest(unittest.TestCase):
         self.assertNotEqual(after.particle_count, before.particle_count)
         self.assertLess(after.step_count, before.step_count)
 
+    def test_spacing_change_rebuilds_the_fluid(self):
+        before = self.stats.next(timeout=20.0, condition=lambda m: m.step_count > 20)
+        try:
+            config = self.reconfigure.update_configuration({'particle_spacing': 0.06})
+            self.assertAlmostEqual(config['particle_spacing'], 0.06)
+            after = self.stats.next(timeout=10.0)
+            self.assertLess(after.particle_count, before.particle_count)
+            self.assertLess(after.step_count, before.step_count)
+        finally:
+            self.reconfigure.update_configuration({'particle_spacing': 0.05})
+
+    def test_too_many_particles_are_refused(self):
+        # dam_break at 5 mm spacing needs 1.28 M particles, over ~max_particles (1 M).
+        before = self.stats.next(timeout=10.0)
+        config = self.reconfigure.update_configuration({'particle_spacing': 0.005})
+        self.assertAlmostEqual(config['particle_spacing'], 0.05)
+        after = self.stats.next(timeout=10.0, condition=lambda m: m.step_count > before.step_count)
+        self.assertEqual(after.particle_count, before.particle_count)
+
     def test_unknown_scene_is_refused_and_the_scene_keeps_running(self):
         before = self.stats.next(timeout=10.0)
         config = self.reconfigure.update_configuration({'scene': 'no_such_scene'})
