@@ -95,6 +95,28 @@ void PbfSolver::setContainer(const Eigen::AlignedBox3f& box) {
   container_ = box;
 }
 
+void PbfSolver::setContainerPose(const Eigen::Isometry3f& pose) {
+  if (!pose.matrix().allFinite()) throw std::invalid_argument("container pose must be finite");
+  container_pose_ = pose;
+}
+
+void PbfSolver::setObstacles(const std::vector<Obstacle>& obstacles) {
+  for (std::size_t k = 0; k < obstacles.size(); ++k) {
+    const std::string err = obstacles[k].validate();
+    if (!err.empty()) throw std::invalid_argument("obstacle " + std::to_string(k) + ": " + err);
+  }
+  obstacles_ = obstacles;
+  prev_obstacle_pose_.clear();
+  for (const auto& o : obstacles_) prev_obstacle_pose_.push_back(o.pose);
+}
+
+void PbfSolver::setObstaclePose(std::size_t index, const Eigen::Isometry3f& pose) {
+  if (index >= obstacles_.size())
+    throw std::invalid_argument("obstacle index " + std::to_string(index) + " out of range");
+  if (!pose.matrix().allFinite()) throw std::invalid_argument("obstacle pose must be finite");
+  obstacles_[index].pose = pose;
+}
+
 void PbfSolver::setParticles(const std::vector<Eigen::Vector3f>& positions,
                              const std::vector<Eigen::Vector3f>& velocities) {
   if (!velocities.empty() && velocities.size() != positions.size())
@@ -177,6 +199,9 @@ StepStats PbfSolver::stepWith(float dt) {
   } else {
     time_ += stats.dt;
     ++step_count_;
+    // The boundaries have now reached the poses set for this step.
+    prev_container_pose_ = container_pose_;
+    for (std::size_t k = 0; k < obstacles_.size(); ++k) prev_obstacle_pose_[k] = obstacles_[k].pose;
   }
   stats.times.total_ms = msSince(t0);
   stats.times.other_ms = std::max(0.0, stats.times.total_ms - stats.times.neighbors_ms -
@@ -298,7 +323,10 @@ void PbfSolver::updateNeighbors(StepStats& stats) {
       return;
     }
   }
-  Eigen::AlignedBox3f domain = container_;
+  Eigen::AlignedBox3f domain;
+  if (!container_.isEmpty())
+    for (int c = 0; c < 8; ++c)
+      domain.extend(container_pose_ * container_.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)));
   if (!domain.isEmpty()) domain.extend(domain.min() - Eigen::Vector3f::Constant(h)).extend(domain.max() + Eigen::Vector3f::Constant(h));
   reorder(grid_->build(predicted_, h + skin, domain));
   grid_->findNeighbors(predicted_, h + skin);
@@ -336,8 +364,8 @@ void PbfSolver::computeLambdas(float& avg_error) {
   const float h = k.h, h2 = k.h2, poly6c = mass * k.poly6_coef;
   const float spiky = grad_scale * k.spiky_grad_coef;
   const float tiny2 = kCoincident * h2;
-  const bool walls = params_.wall_density && !container_.isEmpty();
-  const BoxWallDensity wall_density(container_, h);
+  const bool walls = params_.wall_density;
+  const SolidBoundaries solids = boundaries();
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -370,10 +398,10 @@ void PbfSolver::computeLambdas(float& avg_error) {
       }
       gx = gi.x(), gy = gi.y(), gz = gi.z();
     }
-    if (walls) {  // the wall is static: it adds to grad_i C only, not to the sum over k != i
+    if (walls) {  // solids do not move with the solve: they add to grad_i C only
       float fraction = 0.0f;
       Eigen::Vector3f gw = Eigen::Vector3f::Zero();
-      if (wall_density.accumulate(predicted_[i], fraction, gw)) {
+      if (solids.density(predicted_[i], fraction, gw)) {
         rho += params_.rest_density * fraction;
         gx += gw.x(), gy += gw.y(), gz += gw.z();
       }
@@ -405,8 +433,8 @@ void PbfSolver::computeDeltas() {
   const float poly6_rel = scorr ? k.poly6_coef / k.poly6(dq * dq) : 0.0f;
   const float scorr_k = params_.scorr_k, scorr_n = params_.scorr_n;
   const bool scorr_n4 = scorr_n == 4.0f;
-  const bool walls = params_.wall_density && !container_.isEmpty();
-  const BoxWallDensity wall_density(container_, h);
+  const bool walls = params_.wall_density;
+  const SolidBoundaries solids = boundaries();
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -460,40 +488,49 @@ void PbfSolver::computeDeltas() {
       }
     }
     delta_[i] = grad_scale * dp;
-    if (walls && li != 0.0f) {  // lambda_i times the wall's part of grad_i C_i
+    if (walls && li != 0.0f) {  // lambda_i times the solids' part of grad_i C_i
       float fraction = 0.0f;
       Eigen::Vector3f gw = Eigen::Vector3f::Zero();
-      if (wall_density.accumulate(predicted_[i], fraction, gw)) delta_[i] += li * gw;
+      if (solids.density(predicted_[i], fraction, gw)) delta_[i] += li * gw;
     }
   }
 }
 
+SolidBoundaries PbfSolver::boundaries() const {
+  // Particle centres stay half a spacing from every surface: sphere surfaces touch it,
+  // and the initial lattice (first layer at d/2) is already in place.
+  SolidBoundaries solids(container_, container_pose_, obstacles_, params_.supportRadius(),
+                         0.5f * params_.particle_spacing);
+  solids.setPreviousPoses(prev_container_pose_, &prev_obstacle_pose_);
+  return solids;
+}
+
 void PbfSolver::applyDeltasAndBoundary() {
   const std::size_t n = size();
-  const bool box = !container_.isEmpty();
-  // Particle centres stay half a spacing from the walls: sphere surfaces touch them, and
-  // the initial lattice (first layer at d/2) is already in place.
-  const Eigen::Vector3f lo = container_.min() + Eigen::Vector3f::Constant(0.5f * params_.particle_spacing);
-  const Eigen::Vector3f hi = container_.max() - Eigen::Vector3f::Constant(0.5f * params_.particle_spacing);
+  const SolidBoundaries solids = boundaries();
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    Eigen::Vector3f p = predicted_[i] + delta_[i];
-    if (box) p = p.cwiseMax(lo).cwiseMin(hi);
-    predicted_[i] = p;
-  }
+  for (std::size_t i = 0; i < n; ++i) predicted_[i] = solids.project(predicted_[i] + delta_[i]);
 }
 
 void PbfSolver::updateVelocities(float dt) {
   const std::size_t n = size();
   const float inv_dt = 1.0f / dt;
-  const bool box = !container_.isEmpty();
-  const Eigen::Vector3f lo = container_.min() + Eigen::Vector3f::Constant(0.5f * params_.particle_spacing);
-  const Eigen::Vector3f hi = container_.max() - Eigen::Vector3f::Constant(0.5f * params_.particle_spacing);
+  const SolidBoundaries solids = boundaries();
+  const float keep_sliding = 1.0f - params_.wall_friction;
+  const bool friction = params_.wall_friction > 0.0f;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     // With zero iterations the prediction itself may have left the box.
-    Eigen::Vector3f p = predicted_[i];
-    if (box) p = p.cwiseMax(lo).cwiseMin(hi);
+    Eigen::Vector3f p = solids.project(predicted_[i]);
+    Eigen::Vector3f normal, surface_motion;
+    if (friction && solids.contact(p, normal, surface_motion)) {
+      // Remove part of the sliding relative to the surface; the normal part is the
+      // projection's business.
+      const Eigen::Vector3f rel = (p - position_[i]) - surface_motion;
+      const Eigen::Vector3f tangential = rel - rel.dot(normal) * normal;
+      p -= (1.0f - keep_sliding) * tangential;
+      p = solids.project(p);
+    }
     velocity_[i] = (p - position_[i]) * inv_dt;
     position_[i] = p;
   }
@@ -509,8 +546,8 @@ void PbfSolver::computeDensityAndVorticity() {
   const bool vorticity = params_.vorticity_epsilon > 0.0f;
   if (vorticity) vorticity_.resize(n);
   neighbor_count_.resize(n);
-  const bool walls = params_.wall_density && !container_.isEmpty();
-  const BoxWallDensity wall_density(container_, k.h);
+  const bool walls = params_.wall_density;
+  const SolidBoundaries solids = boundaries();
 
   // Density first (vorticity needs every density).
 #pragma omp parallel for schedule(static)
@@ -527,7 +564,7 @@ void PbfSolver::computeDensityAndVorticity() {
     if (walls) {
       float fraction = 0.0f;
       Eigen::Vector3f unused = Eigen::Vector3f::Zero();
-      if (wall_density.accumulate(pi, fraction, unused)) rho += params_.rest_density * fraction;
+      if (solids.density(pi, fraction, unused)) rho += params_.rest_density * fraction;
     }
     density_[i] = rho;
     neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));

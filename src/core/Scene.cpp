@@ -112,6 +112,7 @@ const std::map<std::string, Setter>& solverSetters() {
     f("scorr_n", &SolverParams::scorr_n);
     f("scorr_delta_q", &SolverParams::scorr_delta_q);
     b("wall_density", &SolverParams::wall_density);
+    f("wall_friction", &SolverParams::wall_friction);
     f("xsph_c", &SolverParams::xsph_c);
     f("vorticity_epsilon", &SolverParams::vorticity_epsilon);
     f("neighbor_skin", &SolverParams::neighbor_skin);
@@ -166,6 +167,58 @@ FluidBlock readBlock(const YAML::Node& n, const std::string& origin, const std::
   return b;
 }
 
+Eigen::Isometry3f readPose(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
+  pose.translation() = readVec3(required(n, "center", origin, key + ".center"), origin, key + ".center");
+  if (n["rpy"]) {
+    const Eigen::Vector3f rpy = readVec3(n["rpy"], origin, key + ".rpy");
+    pose.linear() = (Eigen::AngleAxisf(rpy.z(), Eigen::Vector3f::UnitZ()) *
+                     Eigen::AngleAxisf(rpy.y(), Eigen::Vector3f::UnitY()) *
+                     Eigen::AngleAxisf(rpy.x(), Eigen::Vector3f::UnitX())).toRotationMatrix();
+  }
+  return pose;
+}
+
+Obstacle readObstacle(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsMap()) fail(origin, key, "a map with 'box', 'sphere' or 'capsule'");
+  checkKeys(n, {"box", "sphere", "capsule", "frame"}, origin, key + ".");
+  Obstacle o;
+  int shapes = 0;
+  if (const YAML::Node b = n["box"]) {
+    checkKeys(b, {"center", "half_extents", "rpy"}, origin, key + ".box.");
+    o.shape = Obstacle::Shape::Box;
+    o.offset = readPose(b, origin, key + ".box");
+    o.half_extents = readVec3(required(b, "half_extents", origin, key + ".box.half_extents"), origin,
+                              key + ".box.half_extents");
+    ++shapes;
+  }
+  if (const YAML::Node sp = n["sphere"]) {
+    checkKeys(sp, {"center", "radius"}, origin, key + ".sphere.");
+    o.shape = Obstacle::Shape::Sphere;
+    o.offset = readPose(sp, origin, key + ".sphere");
+    o.radius = readFloat(required(sp, "radius", origin, key + ".sphere.radius"), origin, key + ".sphere.radius");
+    ++shapes;
+  }
+  if (const YAML::Node c = n["capsule"]) {
+    checkKeys(c, {"center", "radius", "half_length", "rpy"}, origin, key + ".capsule.");
+    o.shape = Obstacle::Shape::Capsule;
+    o.offset = readPose(c, origin, key + ".capsule");
+    o.radius = readFloat(required(c, "radius", origin, key + ".capsule.radius"), origin, key + ".capsule.radius");
+    o.half_length = readFloat(required(c, "half_length", origin, key + ".capsule.half_length"), origin,
+                              key + ".capsule.half_length");
+    ++shapes;
+  }
+  if (shapes != 1) fail(origin, key, "exactly one of 'box', 'sphere', 'capsule'");
+  if (n["frame"]) {
+    if (!n["frame"].IsScalar() || n["frame"].Scalar().empty()) fail(origin, key + ".frame", "a tf frame name");
+    o.frame = n["frame"].Scalar();
+  }
+  o.pose = o.offset;  // until the node knows where the frame is
+  const std::string err = o.validate();
+  if (!err.empty()) fail(origin, key, "usable sizes (" + err + ")");
+  return o;
+}
+
 bool blockContains(const FluidBlock& b, const Eigen::Vector3f& p) {
   if (b.shape == FluidBlock::Shape::Box)
     return (p.array() >= b.min.array()).all() && (p.array() < b.max.array()).all();
@@ -182,7 +235,9 @@ Scene loadSceneString(const std::string& text, const std::string& origin) {
     throw SceneError(origin + ": not valid YAML: " + e.what());
   }
   if (!root.IsMap()) throw SceneError(origin + ": expected a map at the top level");
-  checkKeys(root, {"name", "description", "container", "domain_pose", "fluid", "solver"}, origin, "");
+  checkKeys(root, {"name", "description", "container", "container_frame", "domain_pose", "fluid",
+                   "obstacles", "solver"},
+            origin, "");
   Scene s;
   s.source = origin;
   s.name = root["name"] ? root["name"].as<std::string>() : fs::path(origin).stem().string();
@@ -205,6 +260,16 @@ Scene loadSceneString(const std::string& text, const std::string& origin) {
   if (!fluid.IsSequence() || fluid.size() == 0) fail(origin, "fluid", "a non-empty list of blocks");
   for (std::size_t i = 0; i < fluid.size(); ++i)
     s.fluid.push_back(readBlock(fluid[i], origin, "fluid[" + std::to_string(i) + "]"));
+
+  if (const YAML::Node obstacles = root["obstacles"]) {
+    if (!obstacles.IsSequence()) fail(origin, "obstacles", "a list of obstacles");
+    for (std::size_t i = 0; i < obstacles.size(); ++i)
+      s.obstacles.push_back(readObstacle(obstacles[i], origin, "obstacles[" + std::to_string(i) + "]"));
+  }
+  if (const YAML::Node cf = root["container_frame"]) {
+    if (!cf.IsScalar() || cf.Scalar().empty()) fail(origin, "container_frame", "a tf frame name");
+    s.container_frame = cf.Scalar();
+  }
 
   if (const YAML::Node solver = root["solver"]) applySolverNode(solver, origin, "solver.", s.solver);
 
@@ -306,6 +371,10 @@ void Scene::initialParticles(std::vector<Eigen::Vector3f>& positions,
           bool earlier = false;
           for (std::size_t k = 0; k < bi && !earlier; ++k) earlier = blockContains(fluid[k], p);
           if (earlier) continue;
+          bool solid = false;
+          Eigen::Vector3f normal;
+          for (const Obstacle& o : obstacles) solid = solid || o.signedDistance(p, normal) < 0.5f * d;
+          if (solid) continue;
           positions.push_back(p);
           velocities.push_back(b.velocity);
         }

@@ -44,6 +44,8 @@ std::string SolverParams::validate() const {
   if (err.tellp() == 0 && !(finite(xsph_c) && xsph_c >= 0.0f && xsph_c <= 1.0f))
     err << "xsph_c must be in [0, 1] (got " << xsph_c << ")";
   if (err.tellp() == 0) nonNegative("vorticity_epsilon", vorticity_epsilon);
+  if (err.tellp() == 0 && !(finite(wall_friction) && wall_friction >= 0.0f && wall_friction <= 1.0f))
+    err << "wall_friction must be in [0, 1] (got " << wall_friction << ")";
   if (err.tellp() == 0 && !(finite(neighbor_skin) && neighbor_skin >= 0.0f && neighbor_skin <= 1.0f))
     err << "neighbor_skin must be in [0, 1] (fraction of h; got " << neighbor_skin << ")";
   if (err.tellp() == 0 && (max_nan_retries < 0 || max_nan_retries > 30))

@@ -10,6 +10,7 @@
 
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
+#include "pbf_ros/core/SceneSetup.h"
 
 #ifndef PBF_SOURCE_DIR
 #define PBF_SOURCE_DIR "."
@@ -58,12 +59,8 @@ int main(int argc, char** argv) {
     pbf::Scene scene = pbf::loadSceneFile(pbf::resolveScenePath(scene_name, scenes_dir));
     if (spacing > 0.0f) scene.solver.particle_spacing = spacing;
     if (!overrides.empty()) pbf::applySolverYaml(overrides, "--set", scene.solver);
-    std::vector<Eigen::Vector3f> x, v;
-    scene.initialParticles(x, v);
     pbf::PbfSolver solver;
-    solver.setParams(scene.solver);
-    solver.setContainer(scene.container);
-    solver.setParticles(x, v);
+    pbf::setUpSolver(scene, solver);
     std::printf("pbf_run: scene '%s' (%s), %zu particles, spacing %.4f m, simulating %.2f s\n",
                 scene.name.c_str(), scene.source.c_str(), solver.size(),
                 scene.solver.particle_spacing, seconds);

@@ -6,6 +6,7 @@
 
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
+#include "pbf_ros/core/SceneSetup.h"
 
 namespace pbf_test {
 
@@ -14,12 +15,8 @@ inline pbf::Scene loadScene(const std::string& name) {
 }
 
 inline std::unique_ptr<pbf::PbfSolver> makeSolver(const pbf::Scene& scene) {
-  std::vector<Eigen::Vector3f> x, v;
-  scene.initialParticles(x, v);
   auto solver = std::make_unique<pbf::PbfSolver>();
-  solver->setParams(scene.solver);
-  solver->setContainer(scene.container);
-  solver->setParticles(x, v);
+  pbf::setUpSolver(scene, *solver);
   return solver;
 }
 

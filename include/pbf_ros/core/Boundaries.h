@@ -13,6 +13,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <vector>
+
+#include "pbf_ros/core/Obstacle.h"
 
 namespace pbf {
 
@@ -69,6 +72,51 @@ class BoxWallDensity {
 
   Eigen::AlignedBox3f box_;
   float h_, h2_, a_coef_, g_at_h_;
+};
+
+// Everything solid the fluid meets in one step: the container (a box with a pose in the
+// fluid frame, moved by the node when it is attached to a tf frame) and the obstacles.
+// Built once per pass from the solver's state; cheap to copy.
+class SolidBoundaries {
+ public:
+  SolidBoundaries(const Eigen::AlignedBox3f& container, const Eigen::Isometry3f& container_pose,
+                  const std::vector<Obstacle>& obstacles, float support_radius,
+                  float particle_radius);
+
+  // Density fraction (multiply by rho0) and its gradient lent by walls and obstacles
+  // within h of p. Obstacles use the wall formula with their signed distance: exact for
+  // flat faces, a close approximation where curvature radii exceed h. False: none near.
+  bool density(const Eigen::Vector3f& p, float& fraction, Eigen::Vector3f& gradient) const;
+
+  // p moved out of every obstacle and into the container, keeping particle_radius from
+  // each surface. The container is applied last: no particle ever leaves it.
+  Eigen::Vector3f project(const Eigen::Vector3f& p) const;
+
+  // For a particle at p (after project): the unit normal of the surface it touches, if
+  // any (within particle_radius plus a small tolerance), and how far that surface point
+  // moved during the step (from the previous poses). Used for wall friction.
+  bool contact(const Eigen::Vector3f& p, Eigen::Vector3f& normal,
+               Eigen::Vector3f& surface_motion) const;
+
+  // Poses at the start of the step, for surface_motion (default: not moving).
+  void setPreviousPoses(const Eigen::Isometry3f& container,
+                        const std::vector<Eigen::Isometry3f>* obstacles) {
+    prev_container_ = container;
+    prev_obstacles_ = obstacles;
+  }
+
+  bool hasContainer() const { return has_container_; }
+
+ private:
+  bool has_container_;
+  bool posed_;  // container pose is not the identity
+  Eigen::AlignedBox3f box_;
+  Eigen::Isometry3f pose_, inverse_;
+  const std::vector<Obstacle>* obstacles_;
+  Eigen::Isometry3f prev_container_ = Eigen::Isometry3f::Identity();
+  const std::vector<Eigen::Isometry3f>* prev_obstacles_ = nullptr;
+  BoxWallDensity walls_;
+  float h_, radius_;
 };
 
 }  // namespace pbf

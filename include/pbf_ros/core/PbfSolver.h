@@ -12,12 +12,14 @@
 #include <memory>
 #include <vector>
 
+#include "pbf_ros/core/Obstacle.h"
 #include "pbf_ros/core/SolverParams.h"
 #include "pbf_ros/core/StepStats.h"
 
 namespace pbf {
 
 class NeighborGrid;
+class SolidBoundaries;
 
 class PbfSolver {
  public:
@@ -35,6 +37,17 @@ class PbfSolver {
   // Axis-aligned container in the fluid frame; particles are kept inside.
   void setContainer(const Eigen::AlignedBox3f& box);
   const Eigen::AlignedBox3f& container() const { return container_; }
+  // Pose of the container box in the fluid frame (identity unless the node attaches the
+  // container to a moving tf frame). Set between steps; the walls move to it during the
+  // next step and push the fluid along.
+  void setContainerPose(const Eigen::Isometry3f& pose);
+  const Eigen::Isometry3f& containerPose() const { return container_pose_; }
+
+  // Obstacles (validated; throws std::invalid_argument naming the bad one). Their poses
+  // may be updated between steps with setObstaclePose().
+  void setObstacles(const std::vector<Obstacle>& obstacles);
+  void setObstaclePose(std::size_t index, const Eigen::Isometry3f& pose);
+  const std::vector<Obstacle>& obstacles() const { return obstacles_; }
 
   // Replaces all particles. Velocities may be empty (zero). Non-finite input throws.
   void setParticles(const std::vector<Eigen::Vector3f>& positions,
@@ -74,6 +87,7 @@ class PbfSolver {
   Eigen::Vector3f pairGradient(std::size_t i, std::uint32_t j) const;  // grad_i W, exact path
   void applyDeltasAndBoundary();
   void updateVelocities(float dt);
+  SolidBoundaries boundaries() const;
   void computeDensityAndVorticity();
   void applyViscosityAndVorticity(float dt);
   void enforceSpeedLimit(float dt, StepStats& stats);
@@ -84,6 +98,10 @@ class PbfSolver {
 
   SolverParams params_;
   Eigen::AlignedBox3f container_{Eigen::Vector3f(-1, -1, -1), Eigen::Vector3f(1, 1, 1)};
+  Eigen::Isometry3f container_pose_ = Eigen::Isometry3f::Identity();
+  Eigen::Isometry3f prev_container_pose_ = Eigen::Isometry3f::Identity();  // at step start
+  std::vector<Obstacle> obstacles_;
+  std::vector<Eigen::Isometry3f> prev_obstacle_pose_;
 
   // Particle state, all in grid (Morton) order.
   std::vector<Eigen::Vector3f> position_;    // x, at the start/end of a step

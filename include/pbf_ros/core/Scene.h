@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pbf_ros/core/Obstacle.h"
 #include "pbf_ros/core/SolverParams.h"
 
 namespace pbf {
@@ -35,13 +36,18 @@ struct Scene {
   std::string source;                   // file it came from ("" when built in code)
   Eigen::AlignedBox3f container;        // in the fluid_domain frame [m]
   std::vector<FluidBlock> fluid;
+  std::vector<Obstacle> obstacles;      // poses in fluid_domain (or offsets in their frame)
+  // tf frame the container is attached to ("" = fixed in fluid_domain): the node moves
+  // the container with it (sloshing, carrying).
+  std::string container_frame;
   SolverParams solver;                  // defaults overridden by the file's 'solver:' map
   // Pose of fluid_domain in world (the static tf world -> fluid_domain).
   Eigen::Vector3f domain_translation = Eigen::Vector3f::Zero();
   Eigen::Vector3f domain_rpy = Eigen::Vector3f::Zero();  // roll, pitch, yaw [rad]
 
   // Particles on a cubic lattice of spacing solver.particle_spacing filling every block,
-  // cell-centred (first layer at d/2 from a block's face). Overlaps are filled once.
+  // cell-centred (first layer at d/2 from a block's face). Overlaps are filled once;
+  // points inside an obstacle (closer than d/2 to it) are left out.
   void initialParticles(std::vector<Eigen::Vector3f>& positions,
                         std::vector<Eigen::Vector3f>& velocities) const;
 

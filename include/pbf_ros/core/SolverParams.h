@@ -43,6 +43,9 @@ struct SolverParams {
   // beyond each wall, Boundaries.h). Off: the seed's clamp alone, under which the fluid
   // compacts against the walls.
   bool wall_density = true;
+  // Tangential friction at walls and obstacles: the fraction of a touching particle's
+  // sliding motion (relative to the surface) removed each step. 0 = free slip, 1 = no slip.
+  float wall_friction = 0.0f;
 
   // --- velocity post-processing --------------------------------------------------------
   float xsph_c = 0.01f;                // XSPH viscosity (eq 10); 0 disables it at no cost

@@ -1,0 +1,33 @@
+#pragma once
+// Solid obstacles in the flow: boxes, spheres and capsules, static or moved each step (the
+// ROS layer attaches them to tf frames). Particles are kept out of them and, like the
+// container walls, get density from them (Boundaries.h), so they do not stick.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+
+namespace pbf {
+
+struct Obstacle {
+  enum class Shape { Box, Sphere, Capsule };
+  Shape shape = Shape::Sphere;
+  Eigen::Vector3f half_extents = Eigen::Vector3f::Constant(0.05f);  // Box [m]
+  float radius = 0.05f;       // Sphere, Capsule [m]
+  float half_length = 0.05f;  // Capsule: half the segment length, along its local z [m]
+  // tf frame the obstacle is attached to ("" = static in fluid_domain). With a frame,
+  // `offset` is its pose in that frame; the node updates `pose` from tf every step.
+  std::string frame;
+  Eigen::Isometry3f offset = Eigen::Isometry3f::Identity();
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  // in fluid_domain
+
+  // Signed distance from p (fluid_domain) to the surface, negative inside, and the
+  // outward unit normal at the closest surface point.
+  float signedDistance(const Eigen::Vector3f& p, Eigen::Vector3f& normal) const;
+  // Radius of a sphere around pose.translation() containing the whole obstacle.
+  float boundingRadius() const;
+  // Empty when usable; otherwise what is wrong.
+  std::string validate() const;
+};
+
+}  // namespace pbf
