@@ -8,6 +8,7 @@ catkin_add_gtest(test_ros_units
   test/ros/test_cloud_conversion.cpp
   test/ros/test_params_conversion.cpp
   test/ros/test_real_time_pacer.cpp
+  test/ros/test_snapshot_buffer.cpp
   test/ros/test_stats_and_health.cpp)
 if(TARGET test_ros_units)
   # catkin links gtest but not its main().

@@ -20,7 +20,8 @@ void SnapshotBuffer::write(const pbf::PbfSolver& solver, double stamp, double si
   s.container = solver.container();
   s.particle_spacing = solver.params().particle_spacing;
   s.positions = solver.positions();        // assignment reuses capacity
-  s.neighbor_counts = solver.neighborCounts();
+  const auto& counts = solver.neighborCounts();
+  s.neighbor_counts.assign(counts.begin(), counts.end());
   {
     std::lock_guard<std::mutex> lock(mutex_);
     std::swap(latest_, spare_);

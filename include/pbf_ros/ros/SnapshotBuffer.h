@@ -28,7 +28,9 @@ struct ParticleSnapshot {
   Eigen::AlignedBox3f container;    // in fluid_domain
   float particle_spacing = 0.0f;    // [m]
   std::vector<Eigen::Vector3f> positions;        // fluid_domain [m]
-  std::vector<std::uint16_t> neighbor_counts;    // small = surface particle
+  // Small = surface particle. uint32 (the solver keeps uint16) because that is what
+  // pbf::FluidRenderer::render takes: the widening happens in this copy, not in the renderer.
+  std::vector<std::uint32_t> neighbor_counts;
 };
 
 class SnapshotBuffer {
