@@ -212,7 +212,7 @@ struct FluidRenderer::Impl {
     gl.Uniform1f(close_gaps_program.uniform("focal_pixels"), focal);
     gl.Uniform1f(close_gaps_program.uniform("radius"), radius);
     gl.Uniform1f(close_gaps_program.uniform("gap_fraction"), o.gap_closing_in_radii);
-    gl.Uniform1i(close_gaps_program.uniform("max_reach"), 4);
+    gl.Uniform1i(close_gaps_program.uniform("max_reach"), 6);
     raw_depth->bindColorTexture(kUnitDepth);
     drawFullscreen();
 

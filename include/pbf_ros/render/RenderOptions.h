@@ -16,10 +16,10 @@ enum class DepthFilter {
 struct RenderOptions {
   // --- depth smoothing ---
   DepthFilter filter = DepthFilter::NarrowRange;
-  // Before smoothing, each fluid pixel takes the nearest depth within this many particle
-  // radii (projected, at most 4 pixels), which fills the see-through gaps between touching
-  // spheres (0.41 r wide at most); 0 turns it off.
-  float gap_closing_in_radii = 0.5f;
+  // Before smoothing, the see-through gaps between touching spheres (0.41 r wide at most)
+  // are closed by an erosion towards the eye whose reach is this many particle radii
+  // (see shaders/close_gaps.frag); 0 turns it off.
+  float gap_closing_in_radii = 0.7f;
   // Gaussian sigma in world units, as a multiple of the particle radius; projected to pixels
   // at each pixel's depth. Bumps of spheres 2 radii apart are flattened by
   // exp(-sigma^2 k^2 / 2), k = pi / r: below 1e-8 at 2 radii, which also irons out the
