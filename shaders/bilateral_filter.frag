@@ -22,12 +22,13 @@ void main() {
     return;
   }
   float inverse_two_depth_sigma_sq = 1.0 / (2.0 * depth_sigma * depth_sigma);
-  float sum = center;
-  float weight_sum = 1.0;
+  float center_weight = tapWeight(k, 0.0);
+  float sum = center_weight * center;
+  float weight_sum = center_weight;
   for (int i = 0; i < offset_count; ++i) {
-    float r_sq = dot(offsets[i], offsets[i]);
+    ivec2 offset = ivec2(offsets[i]) * k.stride;
+    float r_sq = float(offset.x * offset.x + offset.y * offset.y);
     if (r_sq > k.window * k.window) break;
-    ivec2 offset = ivec2(offsets[i]);
     float spatial = tapWeight(k, r_sq);
     float a = depthAt(pixel + offset);
     float b = depthAt(pixel - offset);

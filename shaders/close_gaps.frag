@@ -16,8 +16,12 @@
 // with the reach and does not depend on the direction: a disc whose radius jumps from 2 to
 // 3 pixels where the depth crosses some value prints a band across the image.
 // Pixels without fluid stay without fluid, so silhouettes keep their place.
+//
+// Also converts the sphere pass's output (nearest depth, a huge value where no sphere
+// was drawn) to the (depth, coverage) pairs the later passes read.
 
-uniform sampler2D depth_texture;  // rg = (linear depth m, coverage)
+const float kNoFluid = 1e29;      // the sphere pass clears to 1e30
+uniform sampler2D depth_texture;  // r = linear depth (m), >= kNoFluid where no fluid
 uniform float focal_pixels;
 uniform float radius;             // particle radius (m)
 uniform float gap_fraction;       // reach in particle radii
@@ -28,27 +32,27 @@ layout(location = 0) out vec2 depth_and_coverage;
 void main() {
   ivec2 size = textureSize(depth_texture, 0);
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  vec2 center = texelFetch(depth_texture, pixel, 0).rg;
-  if (center.g <= 0.0) {
+  float center = texelFetch(depth_texture, pixel, 0).r;
+  if (center >= kNoFluid) {
     depth_and_coverage = vec2(0.0);
     return;
   }
-  float reach = gap_fraction * radius * focal_pixels / center.r;
+  float reach = gap_fraction * radius * focal_pixels / center;
   if (reach < 0.25) {
-    depth_and_coverage = center;
+    depth_and_coverage = vec2(center, 1.0);
     return;
   }
   // Beyond 1.5 reach a neighbour must be 2.25 radii nearer to matter: that is another
   // surface in front, which the narrow-range filter handles, not a gap.
   int extent = min(max_reach, int(ceil(1.5 * reach)));
   float penalty_per_sq_pixel = radius / (reach * reach);
-  float nearest = center.r;
+  float nearest = center;
   for (int dy = -extent; dy <= extent; ++dy)
     for (int dx = -extent; dx <= extent; ++dx) {
       ivec2 p = pixel + ivec2(dx, dy);
       if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) continue;
-      vec2 s = texelFetch(depth_texture, p, 0).rg;
-      if (s.g > 0.0) nearest = min(nearest, s.r + penalty_per_sq_pixel * float(dx * dx + dy * dy));
+      float d = texelFetch(depth_texture, p, 0).r;  // no fluid: 1e30, never the nearest
+      nearest = min(nearest, d + penalty_per_sq_pixel * float(dx * dx + dy * dy));
     }
   depth_and_coverage = vec2(nearest, 1.0);
 }

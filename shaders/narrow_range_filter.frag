@@ -33,12 +33,13 @@ void main() {
   float upper = center + threshold;
   float lower = center - threshold;
   float clamped_in_front = center - clamp_distance;
-  float sum = center;
-  float weight_sum = 1.0;
+  float center_weight = tapWeight(k, 0.0);
+  float sum = center_weight * center;
+  float weight_sum = center_weight;
   for (int i = 0; i < offset_count; ++i) {
-    float r_sq = dot(offsets[i], offsets[i]);
+    ivec2 offset = ivec2(offsets[i]) * k.stride;
+    float r_sq = float(offset.x * offset.x + offset.y * offset.y);
     if (r_sq > k.window * k.window) break;
-    ivec2 offset = ivec2(offsets[i]);
     float a = depthAt(pixel + offset);
     float b = depthAt(pixel - offset);
     if (a <= 0.0 || b <= 0.0 || a > upper || b > upper) continue;  // pair dropped

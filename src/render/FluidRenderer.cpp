@@ -16,14 +16,22 @@
 namespace pbf {
 namespace {
 
-// The filters' kernels reach at most this many pixels (filter_kernel.glsl): a half-disc
-// of ~400 mirrored pairs, the cost bound of one pixel on llvmpipe (see pbf_render_bench).
-constexpr int kFilterOffsetRadius = 16;
+// The filters' offsets reach this many units (filter_kernel.glsl): a half-disc of ~100
+// mirrored pairs, the cost bound of one pixel on llvmpipe (see pbf_render_bench); wider
+// kernels (up to twice this many pixels) take every other pixel of the prefiltered depth.
+constexpr int kFilterOffsetRadius = 8;
+// Sigma of the prefilter (prefilter_depth.frag): enough to keep a 2-pixel grid from
+// aliasing (it attenuates the grid's alias frequency, 1/2 cycle per pixel, by e^-7),
+// small next to the smoothing kernel itself.
+constexpr float kPrefilterSigmaPixels = 1.2f;
 constexpr int kMaxFilterOffsets = 512;  // MAX_OFFSETS in filter_kernel.glsl
 
 // Texture units, fixed per program at set-up.
 constexpr int kUnitDepth = 0, kUnitNormals = 1, kUnitThickness = 2, kUnitCenters = 3,
               kUnitBackground = 4;
+
+constexpr GLfloat kClearDepth[4] = {1e30f, 0, 0, 0};  // "no fluid" for MIN blending
+constexpr GLfloat kClearThickness[4] = {0, 0, 0, 0};
 
 constexpr TextureFormat kFloatRed{GL_R32F, GL_RED, GL_FLOAT};
 constexpr TextureFormat kFloatRg{GL_RG32F, GL_RG, GL_FLOAT};
@@ -66,10 +74,14 @@ std::vector<float> backgroundKey(const RenderCamera& c, const RenderOptions& o) 
 
 struct FluidRenderer::Impl {
   GlFunctions gl;
-  ShaderProgram depth_program, thickness_program, narrow_range_program, bilateral_program,
-      normals_program, background_program, composite_program, close_gaps_program;
-  std::unique_ptr<RenderTarget> raw_depth, closed_depth, thickness, smoothed_depth, normals,
-      background, color;
+  ShaderProgram sphere_program, narrow_range_program, bilateral_program,
+      normals_program, background_program, composite_program, close_gaps_program,
+      prefilter_program;
+  std::unique_ptr<RenderTarget> raw_depth, closed_depth, prefilter_half, prefiltered_depth,
+      thickness, smoothed_depth, normals, background, color;
+  // Draws depth and thickness in one pass (both targets attached), when GL >= 4.0.
+  GLuint sphere_framebuffer = 0;
+  int sphere_framebuffer_width = 0, sphere_framebuffer_height = 0;
   // Sphere centres: a buffer object read by the imposter vertex shader as a buffer texture.
   GLuint particle_buffer = 0, particle_texture = 0, empty_vao = 0;
   VisibleParticles visible;
@@ -86,20 +98,18 @@ struct FluidRenderer::Impl {
       throw std::runtime_error("GL backend '" + backend.name() + "' gives OpenGL " +
                                std::to_string(major) + "." + std::to_string(minor) +
                                "; the renderer needs 3.3 core");
-    depth_program = ShaderProgram(gl, dir, "sphere_imposter.vert", "sphere_depth.frag");
-    thickness_program = ShaderProgram(gl, dir, "sphere_imposter.vert", "sphere_thickness.frag");
+    sphere_program = ShaderProgram(gl, dir, "sphere_imposter.vert", "sphere_surface.frag");
     narrow_range_program = ShaderProgram(gl, dir, "fullscreen.vert", "narrow_range_filter.frag");
     bilateral_program = ShaderProgram(gl, dir, "fullscreen.vert", "bilateral_filter.frag");
     normals_program = ShaderProgram(gl, dir, "fullscreen.vert", "normals.frag");
     background_program = ShaderProgram(gl, dir, "fullscreen.vert", "background.frag");
     composite_program = ShaderProgram(gl, dir, "fullscreen.vert", "composite.frag");
     close_gaps_program = ShaderProgram(gl, dir, "fullscreen.vert", "close_gaps.frag");
+    prefilter_program = ShaderProgram(gl, dir, "fullscreen.vert", "prefilter_depth.frag");
 
     // Constant uniforms: texture units and the filters' offsets.
-    for (const ShaderProgram* program : {&depth_program, &thickness_program}) {
-      program->use();
-      gl.Uniform1i(program->uniform("centers_view"), kUnitCenters);
-    }
+    sphere_program.use();
+    gl.Uniform1i(sphere_program.uniform("centers_view"), kUnitCenters);
     const std::vector<float> offsets = halfDiscOffsets(kFilterOffsetRadius);
     const GLsizei offset_count = static_cast<GLsizei>(offsets.size() / 2);
     if (offset_count > kMaxFilterOffsets)
@@ -116,6 +126,10 @@ struct FluidRenderer::Impl {
     gl.Uniform1i(normals_program.uniform("depth_texture"), kUnitDepth);
     close_gaps_program.use();
     gl.Uniform1i(close_gaps_program.uniform("depth_texture"), kUnitDepth);
+    prefilter_program.use();
+    gl.Uniform1i(prefilter_program.uniform("depth_texture"), kUnitDepth);
+    gl.Uniform1i(prefilter_program.uniform("coverage_texture"), kUnitNormals);
+    gl.Uniform1f(prefilter_program.uniform("sigma_pixels"), kPrefilterSigmaPixels);
     composite_program.use();
     gl.Uniform1i(composite_program.uniform("depth_texture"), kUnitDepth);
     gl.Uniform1i(composite_program.uniform("normal_texture"), kUnitNormals);
@@ -123,14 +137,17 @@ struct FluidRenderer::Impl {
     gl.Uniform1i(composite_program.uniform("background_texture"), kUnitBackground);
     gl.UseProgram(0);
 
-    raw_depth = std::make_unique<RenderTarget>(gl, kFloatRg, true, "sphere depth");
+    raw_depth = std::make_unique<RenderTarget>(gl, kFloatRed, false, "sphere depth");
     closed_depth = std::make_unique<RenderTarget>(gl, kFloatRg, false, "gap-closed depth");
+    prefilter_half = std::make_unique<RenderTarget>(gl, kFloatRg, false, "prefilter, 1st axis");
+    prefiltered_depth = std::make_unique<RenderTarget>(gl, kFloatRg, false, "prefiltered depth");
     thickness = std::make_unique<RenderTarget>(gl, kFloatRed, false, "thickness", true);
     smoothed_depth = std::make_unique<RenderTarget>(gl, kFloatRed, false, "smoothed depth");
     normals = std::make_unique<RenderTarget>(gl, kHalfRgba, false, "normals");
     background = std::make_unique<RenderTarget>(gl, kByteRgba, false, "background");
     color = std::make_unique<RenderTarget>(gl, kByteRgba, false, "shaded image");
 
+    gl.GenFramebuffers(1, &sphere_framebuffer);
     gl.GenBuffers(1, &particle_buffer);
     gl.GenTextures(1, &particle_texture);
     // Every draw fetches or builds its vertices in the shader; core profile still needs a VAO.
@@ -140,6 +157,7 @@ struct FluidRenderer::Impl {
   }
 
   ~Impl() {
+    gl.DeleteFramebuffers(1, &sphere_framebuffer);
     gl.DeleteTextures(1, &particle_texture);
     gl.DeleteBuffers(1, &particle_buffer);
     gl.DeleteVertexArrays(1, &empty_vao);
@@ -173,47 +191,97 @@ struct FluidRenderer::Impl {
     gl.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, particle_buffer);
   }
 
-  void drawSphereDepth(const Eigen::Matrix4f& projection, float radius) {
-    raw_depth->bindForDrawing();
-    gl.Disable(GL_SCISSOR_TEST);
-    gl.ClearColor(0, 0, 0, 0);
-    gl.ClearDepth(1.0);
-    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LESS);
-    gl.DepthMask(GL_TRUE);
-    depth_program.use();
-    gl.UniformMatrix4fv(depth_program.uniform("projection"), 1, GL_FALSE, projection.data());
-    gl.Uniform1f(depth_program.uniform("radius"), radius);
-    drawSpheres(static_cast<GLsizei>(visible.surface_count));
-    gl.Disable(GL_DEPTH_TEST);
+  void setSphereUniforms(const Eigen::Matrix4f& projection, float radius) {
+    sphere_program.use();
+    gl.UniformMatrix4fv(sphere_program.uniform("projection"), 1, GL_FALSE, projection.data());
+    gl.Uniform1f(sphere_program.uniform("radius"), radius);
   }
 
+  // Depth target cleared to "no fluid", then MIN-blended (sphere_surface.frag, output 0).
+  void drawSphereDepth(const Eigen::Matrix4f& projection, float radius) {
+    raw_depth->bindForDrawing();
+    const GLenum outputs[] = {GL_COLOR_ATTACHMENT0};
+    gl.DrawBuffers(1, outputs);
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.ClearBufferfv(GL_COLOR, 0, kClearDepth);
+    gl.Enable(GL_BLEND);
+    gl.BlendFunc(GL_ONE, GL_ONE);
+    gl.BlendEquation(GL_MIN);
+    setSphereUniforms(projection, radius);
+    drawSpheres(static_cast<GLsizei>(visible.surface_count));
+    gl.Disable(GL_BLEND);
+  }
+
+  // Thickness target cleared to 0, then ADD-blended (output 1 routed to the target).
   void drawThickness(const Eigen::Matrix4f& projection, float radius) {
     thickness->bindForDrawing();
+    const GLenum outputs[] = {GL_NONE, GL_COLOR_ATTACHMENT0};
+    gl.DrawBuffers(2, outputs);
     gl.Disable(GL_SCISSOR_TEST);
-    gl.ClearColor(0, 0, 0, 0);
-    gl.Clear(GL_COLOR_BUFFER_BIT);
+    gl.ClearBufferfv(GL_COLOR, 1, kClearThickness);
     gl.Enable(GL_BLEND);
-    gl.BlendEquation(GL_FUNC_ADD);
     gl.BlendFunc(GL_ONE, GL_ONE);
-    thickness_program.use();
-    gl.UniformMatrix4fv(thickness_program.uniform("projection"), 1, GL_FALSE,
-                        projection.data());
-    gl.Uniform1f(thickness_program.uniform("radius"), radius);
+    gl.BlendEquation(GL_FUNC_ADD);
+    setSphereUniforms(projection, radius);
     drawSpheres(static_cast<GLsizei>(visible.view_positions.size()));
     gl.Disable(GL_BLEND);
   }
 
-  void smoothDepth(const RenderOptions& o, float focal, float radius) {
-    // Gaps first (close_gaps.frag), then the smoothing filter reads the result.
+  // Both at once: one draw of every visible particle (GL 4.0 blend equation per target).
+  void drawSphereDepthAndThickness(const Eigen::Matrix4f& projection, float radius) {
+    gl.BindFramebuffer(GL_FRAMEBUFFER, sphere_framebuffer);
+    if (sphere_framebuffer_width != raw_depth->width() ||
+        sphere_framebuffer_height != raw_depth->height()) {
+      gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                              raw_depth->colorTexture(), 0);
+      gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
+                              thickness->colorTexture(), 0);
+      const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+      gl.DrawBuffers(2, outputs);
+      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("render target 'sphere depth + thickness' is incomplete");
+      sphere_framebuffer_width = raw_depth->width();
+      sphere_framebuffer_height = raw_depth->height();
+    }
+    gl.Viewport(0, 0, raw_depth->width(), raw_depth->height());
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.ClearBufferfv(GL_COLOR, 0, kClearDepth);
+    gl.ClearBufferfv(GL_COLOR, 1, kClearThickness);
+    gl.Enable(GL_BLEND);
+    gl.BlendFunc(GL_ONE, GL_ONE);
+    gl.BlendEquationi(0, GL_MIN);
+    gl.BlendEquationi(1, GL_FUNC_ADD);
+    setSphereUniforms(projection, radius);
+    drawSpheres(static_cast<GLsizei>(visible.view_positions.size()));
+    gl.Disable(GL_BLEND);
+  }
+
+  // (depth, coverage) pairs from the sphere depth, with the gaps closed (close_gaps.frag).
+  void resolveDepth(float gap_fraction, float focal, float radius) {
     beginScreenPass(*closed_depth);
     close_gaps_program.use();
     gl.Uniform1f(close_gaps_program.uniform("focal_pixels"), focal);
     gl.Uniform1f(close_gaps_program.uniform("radius"), radius);
-    gl.Uniform1f(close_gaps_program.uniform("gap_fraction"), o.gap_closing_in_radii);
+    gl.Uniform1f(close_gaps_program.uniform("gap_fraction"), gap_fraction);
     gl.Uniform1i(close_gaps_program.uniform("max_reach"), 6);
     raw_depth->bindColorTexture(kUnitDepth);
+    drawFullscreen();
+  }
+
+  void smoothDepth(const RenderOptions& o, float focal, float radius) {
+    // After resolveDepth: a light separable blur (prefilter_depth.frag), then the 2-D
+    // smoothing filter.
+    prefilter_program.use();
+    beginScreenPass(*prefilter_half);
+    gl.Uniform2i(prefilter_program.uniform("direction"), 1, 0);
+    gl.Uniform1i(prefilter_program.uniform("final_pass"), 0);
+    closed_depth->bindColorTexture(kUnitDepth);
+    drawFullscreen();
+    beginScreenPass(*prefiltered_depth);
+    gl.Uniform2i(prefilter_program.uniform("direction"), 0, 1);
+    gl.Uniform1i(prefilter_program.uniform("final_pass"), 1);
+    prefilter_half->bindColorTexture(kUnitDepth);
+    closed_depth->bindColorTexture(kUnitNormals);  // the coverage to keep
     drawFullscreen();
 
     const bool narrow = o.filter == DepthFilter::NarrowRange;
@@ -230,7 +298,7 @@ struct FluidRenderer::Impl {
     } else {
       gl.Uniform1f(program.uniform("depth_sigma"), o.bilateral_depth_sigma_in_radii * radius);
     }
-    closed_depth->bindColorTexture(kUnitDepth);
+    prefiltered_depth->bindColorTexture(kUnitDepth);
     drawFullscreen();
   }
 
@@ -407,8 +475,10 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
   const bool need_thickness = request.image || request.thickness;
   const bool need_normals = request.image || request.normals;
   r.raw_depth->resize(w, h);
+  r.closed_depth->resize(w, h);
   if (options_.filter != DepthFilter::None) {
-    r.closed_depth->resize(w, h);
+    r.prefilter_half->resize(w, h);
+    r.prefiltered_depth->resize(w, h);
     r.smoothed_depth->resize(w, h);
   }
   if (need_thickness) r.thickness->resize(w, h);
@@ -422,7 +492,8 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
                          options_.surface_particles_only, options_.interior_neighbor_count,
                          r.visible);
   out.particles_in_view = r.visible.view_positions.size();
-  out.particles_in_depth = r.visible.surface_count;
+  const bool together = need_thickness && r.gl.BlendEquationi;
+  out.particles_in_depth = together ? out.particles_in_view : r.visible.surface_count;
   r.uploadParticles();
   lap(out.timings.cull_upload);
 
@@ -430,18 +501,25 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
   const float focal = static_cast<float>(intrinsicsOf(camera).fy);
   const Eigen::Vector2f principal(0.5f * w, 0.5f * h);  // window coordinates
 
-  r.drawSphereDepth(projection, radius);
-  lap(out.timings.depth);
-  if (need_thickness) {
-    r.drawThickness(projection, radius);
-    lap(out.timings.thickness);
+  if (together) {
+    r.drawSphereDepthAndThickness(projection, radius);
+    lap(out.timings.depth);
+  } else {
+    r.drawSphereDepth(projection, radius);
+    lap(out.timings.depth);
+    if (need_thickness) {
+      r.drawThickness(projection, radius);
+      lap(out.timings.thickness);
+    }
   }
-  const RenderTarget* surface_depth = r.raw_depth.get();
-  if (options_.filter != DepthFilter::None) {
+  const bool smooth = options_.filter != DepthFilter::None;
+  r.resolveDepth(smooth ? options_.gap_closing_in_radii : 0.0f, focal, radius);
+  const RenderTarget* surface_depth = r.closed_depth.get();
+  if (smooth) {
     r.smoothDepth(options_, focal, radius);
     surface_depth = r.smoothed_depth.get();
-    lap(out.timings.filter);
   }
+  lap(out.timings.filter);
   if (need_normals) {
     r.computeNormals(*surface_depth, focal, principal);
     lap(out.timings.normals);

@@ -16,6 +16,12 @@ void GlFunctions::load(const GlBackend& backend) {
                              #member);
   PBF_GL_FUNCTION_LIST(PBF_GL_LOAD_MEMBER)
 #undef PBF_GL_LOAD_MEMBER
+  // getProcAddress may hand out stubs for functions the context lacks: ask the version.
+  GLint major = 0;
+  GetIntegerv(GL_MAJOR_VERSION, &major);
+  if (major >= 4)
+    BlendEquationi =
+        reinterpret_cast<PFNGLBLENDEQUATIONIPROC>(backend.getProcAddress("glBlendEquationi"));
 }
 
 void GlFunctions::check(const char* what) const {

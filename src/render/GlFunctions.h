@@ -19,6 +19,7 @@ class GlBackend;
   X(PFNGLCLEARCOLORPROC, ClearColor)                                   \
   X(PFNGLCLEARDEPTHPROC, ClearDepth)                                   \
   X(PFNGLCLEARPROC, Clear)                                             \
+  X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                             \
   X(PFNGLENABLEPROC, Enable)                                           \
   X(PFNGLSCISSORPROC, Scissor)                                         \
   X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                         \
@@ -72,6 +73,7 @@ class GlBackend;
   X(PFNGLUSEPROGRAMPROC, UseProgram)                                   \
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                   \
   X(PFNGLUNIFORM1IPROC, Uniform1i)                                     \
+  X(PFNGLUNIFORM2IPROC, Uniform2i)                                     \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                     \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                     \
   X(PFNGLUNIFORM2FVPROC, Uniform2fv)                                   \
@@ -84,6 +86,9 @@ struct GlFunctions {
 #define PBF_GL_DECLARE_MEMBER(type, name) type name = nullptr;
   PBF_GL_FUNCTION_LIST(PBF_GL_DECLARE_MEMBER)
 #undef PBF_GL_DECLARE_MEMBER
+
+  // OpenGL 4.0 (per-draw-buffer blend equations): null on a 3.3 context.
+  PFNGLBLENDEQUATIONIPROC BlendEquationi = nullptr;
 
   // Loads every function from the backend's current context. Throws std::runtime_error
   // naming the first function the context does not provide.

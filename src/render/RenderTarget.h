@@ -31,6 +31,7 @@ class RenderTarget {
   void generateMipmaps() const;
 
   GLuint framebuffer() const { return framebuffer_; }
+  GLuint colorTexture() const { return color_; }
   int width() const { return width_; }
   int height() const { return height_; }
 

@@ -3,10 +3,17 @@
 // default; the first frames are a warm-up (shader JIT, allocation) and are not counted.
 //
 //   pbf_render_bench [--backend osmesa|egl] [--frames N] [--warmup N] [--width W]
-//                    [--height H] [--filter narrow|bilateral|none] [--counts 20000,80000]
-//                    [--shaders DIR] [--png DIR]
+//                    [--height H] [--filter narrow|bilateral|none] [--sigma RADII]
+//                    [--counts 20000,80000] [--shaders DIR] [--png DIR]
+//
+// Each scene is measured twice: image + depth (what the node renders when both topics have
+// subscribers), and depth alone with only the surface particles drawn (fewer than 24
+// neighbours within h = 2 spacings, counted here the way the node has them from the
+// solver; inside the block a particle has about 30).
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -14,6 +21,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "pbf_ros/render/FluidRenderer.h"
@@ -25,6 +33,7 @@ struct Options {
   std::string backend = "osmesa";
   int frames = 30, warmup = 5, width = 640, height = 480;
   std::string filter = "narrow";
+  float sigma = -1;  // filter sigma in particle radii; < 0: the renderer's default
   std::vector<int> counts = {20000, 80000};
   std::string shader_dir = PBF_SHADER_SOURCE_DIR;
   std::string png_dir;
@@ -44,6 +53,7 @@ Options parse(int argc, char** argv) {
     else if (arg == "--width") o.width = std::stoi(value());
     else if (arg == "--height") o.height = std::stoi(value());
     else if (arg == "--filter") o.filter = value();
+    else if (arg == "--sigma") o.sigma = std::stof(value());
     else if (arg == "--shaders") o.shader_dir = value();
     else if (arg == "--png") o.png_dir = value();
     else if (arg == "--counts") {
@@ -79,6 +89,30 @@ std::vector<Eigen::Vector3f> damBreakBlock(int count, float spacing) {
   return points;
 }
 
+// Neighbours within `radius` of each point, by brute force over a hashed grid.
+std::vector<std::uint32_t> neighborCounts(const std::vector<Eigen::Vector3f>& points,
+                                          float radius) {
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells;
+  auto key = [radius](const Eigen::Vector3f& p, int dx, int dy, int dz) {
+    const std::int64_t x = static_cast<std::int64_t>(std::floor(p.x() / radius)) + dx;
+    const std::int64_t y = static_cast<std::int64_t>(std::floor(p.y() / radius)) + dy;
+    const std::int64_t z = static_cast<std::int64_t>(std::floor(p.z() / radius)) + dz;
+    return (x * 73856093) ^ (y * 19349663) ^ (z * 83492791);
+  };
+  for (std::uint32_t i = 0; i < points.size(); ++i) cells[key(points[i], 0, 0, 0)].push_back(i);
+  std::vector<std::uint32_t> counts(points.size(), 0);
+  for (std::uint32_t i = 0; i < points.size(); ++i)
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto cell = cells.find(key(points[i], dx, dy, dz));
+          if (cell == cells.end()) continue;
+          for (std::uint32_t j : cell->second)
+            if (j != i && (points[i] - points[j]).squaredNorm() < radius * radius) ++counts[i];
+        }
+  return counts;
+}
+
 double mean(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s += x;
@@ -101,6 +135,7 @@ int main(int argc, char** argv) {
     else if (o.filter == "bilateral") render_options.filter = pbf::DepthFilter::Bilateral;
     else if (o.filter == "none") render_options.filter = pbf::DepthFilter::None;
     else throw std::invalid_argument("--filter must be narrow, bilateral or none");
+    if (o.sigma >= 0) render_options.filter_sigma_in_radii = o.sigma;
 
     pbf::FluidRenderer renderer(pbf::createGlBackend(o.backend), o.shader_dir, render_options);
     std::printf("backend %s: %s\n", o.backend.c_str(), renderer.glDescription().c_str());
@@ -109,31 +144,43 @@ int main(int argc, char** argv) {
     pbf::RenderCamera camera;
     camera.width = o.width;
     camera.height = o.height;
+    // Looking down at the block from a corner of the container, as a user would set it up;
+    // the 20k block fills about a fifth of the image, the 80k one about two fifths.
     camera.camera_to_world =
-        pbf::lookAt(Eigen::Vector3f(1.05f, -0.55f, 0.55f), Eigen::Vector3f(0.32f, 0.22f, 0.05f));
-    pbf::RenderRequest request;  // image + depth: what the node publishes
+        pbf::lookAt(Eigen::Vector3f(0.95f, -0.45f, 0.5f), Eigen::Vector3f(0.3f, 0.2f, 0.08f));
+    const pbf::RenderRequest image_and_depth{true, true, false, false};
+    const pbf::RenderRequest depth_only{false, true, false, false};
 
     std::printf("%dx%d, filter %s, %d frames after %d warm-up, ms per pass (mean / median)\n",
                 o.width, o.height, o.filter.c_str(), o.frames, o.warmup);
-    std::printf("%9s %9s %13s %13s %13s %13s %13s %13s %13s %13s\n", "particles", "in view",
-                "cull+upload", "depth", "thickness", "filter", "normals", "composite",
-                "readback", "total");
-    for (int count : o.counts) {
+    std::printf("%9s %-12s %9s %13s %13s %13s %13s %13s %13s %13s %13s\n", "particles",
+                "request", "in depth", "cull+upload", "depth", "thickness", "filter",
+                "normals", "composite", "readback", "total");
+    for (int run = 0; run < 2 * static_cast<int>(o.counts.size()); ++run) {
+      const int count = o.counts[run / 2];
+      const bool surface_only = run % 2 == 1;
       const std::vector<Eigen::Vector3f> particles = damBreakBlock(count, spacing);
+      const std::vector<std::uint32_t> counts =
+          surface_only ? neighborCounts(particles, 2.0f * spacing) : std::vector<std::uint32_t>{};
+      pbf::RenderOptions run_options = render_options;
+      run_options.surface_particles_only = surface_only;
+      renderer.setOptions(run_options);
       pbf::RenderOutput out;
       std::vector<double> t[8];
       for (int frame = 0; frame < o.warmup + o.frames; ++frame) {
-        renderer.render(particles, radius, camera, request, out);
+        renderer.render(particles, radius, camera, surface_only ? depth_only : image_and_depth,
+                        out, surface_only ? &counts : nullptr);
         if (frame < o.warmup) continue;
         const pbf::RenderTimings& s = out.timings;
         const double values[8] = {s.cull_upload, s.depth,     s.thickness, s.filter,
                                   s.normals,     s.composite, s.readback,  s.total};
         for (int i = 0; i < 8; ++i) t[i].push_back(values[i]);
       }
-      std::printf("%9d %9zu", count, out.particles_in_view);
+      std::printf("%9d %-12s %9zu", count, surface_only ? "depth,surf." : "image+depth",
+                  out.particles_in_depth);
       for (const auto& series : t) std::printf("  %5.1f / %5.1f", mean(series), median(series));
       std::printf("\n");
-      if (!o.png_dir.empty()) {
+      if (!o.png_dir.empty() && !surface_only) {
         const std::string stem = o.png_dir + "/bench_" + std::to_string(count) + "_" + o.filter;
         pbf::writePng(stem + "_image.png", out.width, out.height, 4, out.rgba);
         pbf::writePng(stem + "_depth.png", out.width, out.height, 4, pbf::depthToRgba(out.depth));

@@ -158,10 +158,13 @@ TEST_F(RendererApi, SurfaceOnlyDrawsFewerParticlesInTheDepthPass) {
   options.interior_neighbor_count = 18;
   renderer_.setOptions(options);
 
+  // A depth-only request: the depth pass then runs alone (with an image, GL 4 contexts draw
+  // every particle once for depth and thickness together).
+  const pbf::RenderRequest depth_only{false, true, false, false};
   pbf::RenderOutput all, surface;
-  renderer_.render(particles, 0.01f, smallCamera(), pbf_test::everything(), surface, &counts);
+  renderer_.render(particles, 0.01f, smallCamera(), depth_only, surface, &counts);
   renderer_.setOptions(pbf::RenderOptions{});
-  renderer_.render(particles, 0.01f, smallCamera(), pbf_test::everything(), all, &counts);
+  renderer_.render(particles, 0.01f, smallCamera(), depth_only, all, &counts);
   std::printf("depth pass: %zu of %zu particles when surface only\n",
               surface.particles_in_depth, surface.particles_in_view);
   EXPECT_LT(surface.particles_in_depth, all.particles_in_depth * 7 / 10);
@@ -178,8 +181,8 @@ TEST_F(RendererApi, SurfaceOnlyDrawsFewerParticlesInTheDepthPass) {
 
   std::vector<std::uint32_t> wrong_size(3, 0);
   renderer_.setOptions(options);
-  EXPECT_THROW(renderer_.render(particles, 0.01f, smallCamera(), pbf_test::everything(),
-                                surface, &wrong_size),
+  EXPECT_THROW(renderer_.render(particles, 0.01f, smallCamera(), depth_only, surface,
+                                &wrong_size),
                std::invalid_argument);
 }
 

@@ -39,7 +39,10 @@ struct RenderOptions {
   // --- what is drawn ---
   // Draw only particles with fewer than interior_neighbor_count neighbours in the depth
   // pass (needs the neighbour counts passed to render()). The thickness pass always uses
-  // every visible particle, since interior particles are what make water thick.
+  // every visible particle, since interior particles are what make water thick; so this
+  // saves work when the depth pass runs alone: depth-only requests, or a GL 3.3 context.
+  // (With GL >= 4.0 a shaded image draws every particle once, for depth and thickness
+  // together, which is cheaper than two passes.)
   bool surface_particles_only = false;
   std::uint32_t interior_neighbor_count = 24;
 
@@ -47,7 +50,9 @@ struct RenderOptions {
   float refractive_index = 1.333f;
   float fresnel_f0 = 0.02f;  // reflectance of water at normal incidence
   // Beer-Lambert absorption per metre of thickness (red is absorbed most: water is blue).
-  Eigen::Vector3f absorption = Eigen::Vector3f(9.0f, 3.0f, 1.2f);
+  // Thickness is the sum of the spheres' chords, about half the fluid's (touching spheres
+  // fill 52 % of a lattice), and the colour is exaggerated so a 10 cm body reads as water.
+  Eigen::Vector3f absorption = Eigen::Vector3f(30.0f, 10.0f, 4.0f);
   // World direction towards the light (z up), need not be normalised.
   Eigen::Vector3f light_direction = Eigen::Vector3f(0.4f, 0.3f, 1.0f);
   float specular_strength = 0.6f;

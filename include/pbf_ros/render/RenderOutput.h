@@ -20,9 +20,9 @@ struct RenderRequest {
 // Milliseconds per pass, each bounded by glFinish (so they add up to the frame time).
 struct RenderTimings {
   double cull_upload = 0;  // frustum culling, surface selection, upload to GL
-  double depth = 0;        // sphere imposters -> linear depth
-  double thickness = 0;    // additive sphere chords
-  double filter = 0;       // depth smoothing
+  double depth = 0;        // sphere imposters -> linear depth (and thickness, see below)
+  double thickness = 0;    // additive sphere chords; 0 when drawn in the depth pass (GL 4)
+  double filter = 0;       // gap closing and depth smoothing
   double normals = 0;      // normals from smoothed depth
   double composite = 0;    // shading
   double readback = 0;     // glReadPixels and row flipping
