@@ -15,7 +15,7 @@ PACKAGES=(
   libimage-transport-dev librostest-dev python3-rostest python3-rospy python3-roslaunch
   python3-rosmsg python3-sensor-msgs python3-std-srvs python3-rosgraph-msgs
   # headless rendering
-  libosmesa6-dev libegl-dev libgl-dev libgles-dev
+  libosmesa6-dev libegl-dev libgl-dev libgles-dev libpng-dev
   # plots, and looking at the demo like a user
   python3-matplotlib python3-numpy python3-yaml rviz xvfb
 )
