@@ -9,7 +9,7 @@ foreach(test_name render_backend_tests render_camera_tests render_ball_tests ren
   string(REPLACE "_tests" "" stem ${stem})
   catkin_add_gtest(${test_name} ${PBF_RENDER_TEST_DIR}/test_${stem}.cpp)
   if(TARGET ${test_name})
-    target_link_libraries(${test_name} pbf_render)
+    target_link_libraries(${test_name} pbf_render gtest_main)
     target_compile_definitions(${test_name} PRIVATE
       PBF_SHADER_SOURCE_DIR="${PBF_SHADER_SOURCE_DIR}"
       PBF_TEST_IMAGE_DIR="${PBF_TEST_IMAGE_DIR}")

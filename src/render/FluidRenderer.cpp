@@ -137,15 +137,15 @@ struct FluidRenderer::Impl {
     gl.Uniform1i(composite_program.uniform("background_texture"), kUnitBackground);
     gl.UseProgram(0);
 
-    raw_depth = std::make_unique<RenderTarget>(gl, kFloatRed, false, "sphere depth");
-    closed_depth = std::make_unique<RenderTarget>(gl, kFloatRg, false, "gap-closed depth");
-    prefilter_half = std::make_unique<RenderTarget>(gl, kFloatRg, false, "prefilter, 1st axis");
-    prefiltered_depth = std::make_unique<RenderTarget>(gl, kFloatRg, false, "prefiltered depth");
-    thickness = std::make_unique<RenderTarget>(gl, kFloatRed, false, "thickness", true);
-    smoothed_depth = std::make_unique<RenderTarget>(gl, kFloatRed, false, "smoothed depth");
-    normals = std::make_unique<RenderTarget>(gl, kHalfRgba, false, "normals");
-    background = std::make_unique<RenderTarget>(gl, kByteRgba, false, "background");
-    color = std::make_unique<RenderTarget>(gl, kByteRgba, false, "shaded image");
+    raw_depth = std::make_unique<RenderTarget>(gl, kFloatRed, "sphere depth");
+    closed_depth = std::make_unique<RenderTarget>(gl, kFloatRg, "gap-closed depth");
+    prefilter_half = std::make_unique<RenderTarget>(gl, kFloatRg, "prefilter, 1st axis");
+    prefiltered_depth = std::make_unique<RenderTarget>(gl, kFloatRg, "prefiltered depth");
+    thickness = std::make_unique<RenderTarget>(gl, kFloatRed, "thickness", true);
+    smoothed_depth = std::make_unique<RenderTarget>(gl, kFloatRed, "smoothed depth");
+    normals = std::make_unique<RenderTarget>(gl, kHalfRgba, "normals");
+    background = std::make_unique<RenderTarget>(gl, kByteRgba, "background");
+    color = std::make_unique<RenderTarget>(gl, kByteRgba, "shaded image");
 
     gl.GenFramebuffers(1, &sphere_framebuffer);
     gl.GenBuffers(1, &particle_buffer);

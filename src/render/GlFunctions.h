@@ -17,15 +17,12 @@ class GlBackend;
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                 \
   X(PFNGLVIEWPORTPROC, Viewport)                                       \
   X(PFNGLCLEARCOLORPROC, ClearColor)                                   \
-  X(PFNGLCLEARDEPTHPROC, ClearDepth)                                   \
   X(PFNGLCLEARPROC, Clear)                                             \
   X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                             \
   X(PFNGLENABLEPROC, Enable)                                           \
   X(PFNGLSCISSORPROC, Scissor)                                         \
   X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                         \
   X(PFNGLDISABLEPROC, Disable)                                         \
-  X(PFNGLDEPTHFUNCPROC, DepthFunc)                                     \
-  X(PFNGLDEPTHMASKPROC, DepthMask)                                     \
   X(PFNGLBLENDFUNCPROC, BlendFunc)                                     \
   X(PFNGLBLENDEQUATIONPROC, BlendEquation)                             \
   X(PFNGLFINISHPROC, Finish)                                           \
@@ -53,11 +50,7 @@ class GlBackend;
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                             \
   X(PFNGLBINDBUFFERPROC, BindBuffer)                                   \
   X(PFNGLBUFFERDATAPROC, BufferData)                                   \
-  X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)         \
-  X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                 \
-  X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor)                 \
   X(PFNGLDRAWARRAYSPROC, DrawArrays)                                   \
-  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)                 \
   X(PFNGLCREATESHADERPROC, CreateShader)                               \
   X(PFNGLSHADERSOURCEPROC, ShaderSource)                               \
   X(PFNGLCOMPILESHADERPROC, CompileShader)                             \
@@ -78,7 +71,6 @@ class GlBackend;
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                     \
   X(PFNGLUNIFORM2FVPROC, Uniform2fv)                                   \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                     \
-  X(PFNGLUNIFORM4FPROC, Uniform4f)                                     \
   X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)                       \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)
 

@@ -5,19 +5,16 @@
 
 namespace pbf {
 
-RenderTarget::RenderTarget(const GlFunctions& gl, TextureFormat color, bool with_depth,
-                           const char* name, bool mipmapped)
-    : gl_(gl), color_format_(color), with_depth_(with_depth), mipmapped_(mipmapped),
-      name_(name) {
+RenderTarget::RenderTarget(const GlFunctions& gl, TextureFormat color, const char* name,
+                           bool mipmapped)
+    : gl_(gl), color_format_(color), mipmapped_(mipmapped), name_(name) {
   gl_.GenFramebuffers(1, &framebuffer_);
   gl_.GenTextures(1, &color_);
-  if (with_depth_) gl_.GenTextures(1, &depth_);
 }
 
 RenderTarget::~RenderTarget() {
   gl_.DeleteFramebuffers(1, &framebuffer_);
   gl_.DeleteTextures(1, &color_);
-  if (depth_) gl_.DeleteTextures(1, &depth_);
 }
 
 void RenderTarget::resize(int width, int height) {
@@ -25,8 +22,8 @@ void RenderTarget::resize(int width, int height) {
   width_ = width;
   height_ = height;
   // Nearest sampling unless mipmapped: the passes read exact texels (texelFetch), and
-  // filtering across the fluid silhouette would blend depth with background. (The
-  // mipmapped raw depth carries a coverage channel so its averages can be undone.)
+  // filtering across the fluid silhouette would blend depth with background. (Only the
+  // thickness is mipmapped: the composite reads it averaged over a particle's size.)
   gl_.BindTexture(GL_TEXTURE_2D, color_);
   gl_.TexImage2D(GL_TEXTURE_2D, 0, color_format_.internal_format, width, height, 0,
                  color_format_.format, color_format_.type, nullptr);
@@ -36,17 +33,8 @@ void RenderTarget::resize(int width, int height) {
   if (mipmapped_) gl_.GenerateMipmap(GL_TEXTURE_2D);  // allocate the levels
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  if (with_depth_) {
-    gl_.BindTexture(GL_TEXTURE_2D, depth_);
-    gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0,
-                   GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  }
   gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
-  if (with_depth_)
-    gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
   const GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error(std::string("render target '") + name_ +

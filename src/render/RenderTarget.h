@@ -1,6 +1,7 @@
 #pragma once
-// A framebuffer object with one colour texture and, optionally, a depth texture.
-// Each pass of the pipeline draws into one of these and the next pass samples it.
+// A framebuffer object with one colour texture. Each pass of the pipeline draws into one
+// of these and the next pass samples it. (No depth buffers: the sphere pass keeps the
+// nearest sphere by MIN blending.)
 
 #include "GlFunctions.h"
 
@@ -17,7 +18,7 @@ class RenderTarget {
   // mipmapped: the colour texture is sampled with linear filtering from mipmap levels that
   // generateMipmaps() builds (the depth filters' prefiltered wide kernels); otherwise it
   // is read texel by texel.
-  RenderTarget(const GlFunctions& gl, TextureFormat color, bool with_depth, const char* name,
+  RenderTarget(const GlFunctions& gl, TextureFormat color, const char* name,
                bool mipmapped = false);
   ~RenderTarget();
   RenderTarget(const RenderTarget&) = delete;
@@ -38,10 +39,9 @@ class RenderTarget {
  private:
   const GlFunctions& gl_;
   TextureFormat color_format_;
-  bool with_depth_;
   bool mipmapped_;
   const char* name_;
-  GLuint framebuffer_ = 0, color_ = 0, depth_ = 0;
+  GLuint framebuffer_ = 0, color_ = 0;
   int width_ = 0, height_ = 0;
 };
 
