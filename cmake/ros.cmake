@@ -4,7 +4,6 @@ include_directories(${catkin_INCLUDE_DIRS})
 
 add_library(pbf_ros_node
   src/ros/CloudConversion.cpp
-  src/ros/ContainerMarkers.cpp
   src/ros/DomainTransform.cpp
   src/ros/FluidDiagnostics.cpp
   src/ros/FluidNode.cpp
@@ -12,11 +11,13 @@ add_library(pbf_ros_node
   src/ros/FluidNodeServices.cpp
   src/ros/ParamsConversion.cpp
   src/ros/RealTimePacer.cpp
+  src/ros/SceneMarkers.cpp
   src/ros/SceneLoading.cpp
   src/ros/SimulationLoop.cpp
   src/ros/SimulationTasks.cpp
   src/ros/SnapshotBuffer.cpp
-  src/ros/StatsConversion.cpp)
+  src/ros/StatsConversion.cpp
+  src/ros/TfAttachments.cpp)
 target_include_directories(pbf_ros_node PUBLIC include ${CATKIN_DEVEL_PREFIX}/include)
 target_link_libraries(pbf_ros_node PUBLIC pbf_core ${catkin_LIBRARIES})
 # The generated SimulationStats.h and FluidConfig.h must exist before we compile.
@@ -25,7 +26,11 @@ add_dependencies(pbf_ros_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NA
 add_executable(pbf_node src/nodes/pbf_node.cpp)
 target_link_libraries(pbf_node pbf_ros_node)
 
-install(TARGETS pbf_ros_node pbf_node
+# Demo helper: a tf frame that oscillates or tilts (carries a container or obstacles).
+add_executable(moving_frame src/nodes/moving_frame.cpp)
+target_link_libraries(moving_frame ${catkin_LIBRARIES})
+
+install(TARGETS pbf_ros_node pbf_node moving_frame
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -8,6 +8,7 @@ catkin_add_gtest(test_ros_units
   test/ros/test_cloud_conversion.cpp
   test/ros/test_params_conversion.cpp
   test/ros/test_real_time_pacer.cpp
+  test/ros/test_scene_markers.cpp
   test/ros/test_snapshot_buffer.cpp
   test/ros/test_stats_and_health.cpp)
 if(TARGET test_ros_units)
@@ -19,3 +20,4 @@ add_rostest(test/node_interface.test DEPENDENCIES pbf_node)
 add_rostest(test/particles_rate.test DEPENDENCIES pbf_node)
 add_rostest(test/node_control.test DEPENDENCIES pbf_node)
 add_rostest(test/sim_clock.test DEPENDENCIES pbf_node)
+add_rostest(test/attached_frames.test DEPENDENCIES pbf_node moving_frame)

@@ -26,6 +26,7 @@ void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
   c.cfm_epsilon = p.cfm_epsilon;
   c.unilateral_constraint = p.unilateral_constraint;
   c.wall_density = p.wall_density;
+  c.wall_friction = p.wall_friction;
   c.scorr_k = p.scorr_k;
   c.scorr_n = p.scorr_n;
   c.scorr_delta_q = p.scorr_delta_q;
@@ -54,6 +55,7 @@ pbf::SolverParams configToSolverParams(const FluidConfig& c, pbf::SolverParams b
   p.cfm_epsilon = static_cast<float>(c.cfm_epsilon);
   p.unilateral_constraint = c.unilateral_constraint;
   p.wall_density = c.wall_density;
+  p.wall_friction = static_cast<float>(c.wall_friction);
   p.scorr_k = static_cast<float>(c.scorr_k);
   p.scorr_n = static_cast<float>(c.scorr_n);
   p.scorr_delta_q = static_cast<float>(c.scorr_delta_q);

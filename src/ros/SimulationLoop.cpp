@@ -6,10 +6,11 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include "pbf_ros/ros/CloudConversion.h"
-#include "pbf_ros/ros/ContainerMarkers.h"
 #include "pbf_ros/ros/DomainTransform.h"
 #include "pbf_ros/ros/FluidNode.h"
+#include "pbf_ros/ros/SceneMarkers.h"
 #include "pbf_ros/ros/StatsConversion.h"
+#include "pbf_ros/core/SceneSetup.h"
 
 namespace pbf_ros {
 
@@ -65,6 +66,16 @@ void FluidNode::runSimulation() {
 }
 
 void FluidNode::stepOnce() {
+  if (!attachments_) attachments_ = std::make_unique<TfAttachments>(domain_frame_);
+  try {
+    const std::vector<std::string> missing = attachments_->update(scene_, *solver_);
+    if (!missing.empty()) {
+      ROS_WARN_THROTTLE(10.0, "pbf_node: no tf for frame '%s' (%s -> it) yet; its solid stays put",
+                        missing.front().c_str(), domain_frame_.c_str());
+    }
+  } catch (const std::exception& e) {  // a non-finite pose: keep the previous one
+    ROS_WARN_THROTTLE(10.0, "pbf_node: ignoring an attached frame's pose: %s", e.what());
+  }
   const double time_before = solver_->time();
   last_stats_ = solver_->step();
   sim_clock_ += solver_->time() - time_before;
@@ -170,9 +181,7 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     // A fresh solver: time and step count start again from 0; the old one keeps running
     // if anything below throws.
     auto fresh = std::make_unique<pbf::PbfSolver>();
-    fresh->setParams(params);
-    fresh->setContainer(next.container);
-    fresh->setParticles(positions, velocities);
+    pbf::setUpSolver(next, *fresh);  // parameters, container, obstacles, particles
     solver_ = std::move(fresh);
     scene_ = next;
   } catch (const std::exception& e) {
@@ -191,7 +200,7 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
 
 void FluidNode::announceScene() {
   const ros::Time now = stamp();
-  markers_pub_.publish(makeContainerMarkers(scene_.container, domain_frame_, now));
+  markers_pub_.publish(makeSceneMarkers(scene_, domain_frame_, now));
   tf_static_.sendTransform(makeDomainTransform(scene_, world_frame_, domain_frame_, now));
 }
 

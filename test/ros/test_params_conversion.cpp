@@ -26,6 +26,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   p.adaptive_time_step = false;
   p.unilateral_constraint = false;
   p.wall_density = false;
+  p.wall_friction = 0.4f;
   p.scorr_k = 0.1f;
   p.neighbor_skin = 0.3f;
   FluidConfig c = FluidConfig::__getDefault__();
@@ -40,6 +41,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   EXPECT_FALSE(q.adaptive_time_step);
   EXPECT_FALSE(q.unilateral_constraint);
   EXPECT_FALSE(q.wall_density);
+  EXPECT_FLOAT_EQ(q.wall_friction, 0.4f);
   EXPECT_FLOAT_EQ(q.scorr_k, 0.1f);
   EXPECT_FLOAT_EQ(q.neighbor_skin, 0.3f);
 }

@@ -33,6 +33,7 @@
 #include "pbf_ros/ros/RealTimePacer.h"
 #include "pbf_ros/ros/SimulationTasks.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
+#include "pbf_ros/ros/TfAttachments.h"
 
 namespace pbf_ros {
 
@@ -131,6 +132,7 @@ class FluidNode {
   sensor_msgs::PointCloud2 cloud_;     // reused: its buffer is not reallocated every time
   SimulationTasks tasks_;
   SnapshotBuffer snapshots_;
+  std::unique_ptr<TfAttachments> attachments_;  // moves solids attached to tf frames
   std::atomic<bool> running_{false};
   std::thread sim_thread_;
 

@@ -17,10 +17,11 @@ constexpr std::uint32_t kResolution = 64;   // particle spacing: rebuilds the fl
 constexpr std::uint32_t kScene = 128;       // scene: reloads and rebuilds the fluid
 constexpr std::uint32_t kPublishing = 256;  // publish rates
 constexpr std::uint32_t kPacing = 512;      // real-time factor
+constexpr std::uint32_t kBoundary = 1024;   // walls and obstacles: wall density, friction
 
 // Subsystems handled by SolverParams alone: the fluid keeps its state.
 constexpr std::uint32_t kAnySolverParam =
-    kSolver | kVelocity | kTimeStep | kNeighbors | kForces | kFluid | kResolution;
+    kSolver | kVelocity | kTimeStep | kNeighbors | kForces | kFluid | kResolution | kBoundary;
 // Subsystems that rebuild the fluid from the scene.
 constexpr std::uint32_t kAnyReset = kResolution | kScene;
 

@@ -1,17 +1,20 @@
 #pragma once
-// The scene's container as rviz markers (a wireframe box and a faint floor), in the fluid
-// frame. Obstacles will join here when scenes have them.
+// A scene's solids as rviz markers: the container (wireframe box and a faint floor) and the
+// obstacles. Solids attached to a tf frame are drawn in that frame, so rviz moves them
+// with tf exactly as the solver does.
 
-#include <Eigen/Geometry>
 #include <ros/time.h>
 #include <string>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "pbf_ros/core/Scene.h"
+
 namespace pbf_ros {
 
 // The array starts with a DELETEALL so markers of a previous scene disappear.
-visualization_msgs::MarkerArray makeContainerMarkers(const Eigen::AlignedBox3f& container,
-                                                     const std::string& frame_id,
-                                                     const ros::Time& stamp);
+// Namespaces: "container" (ids 0 edges, 1 floor), "obstacles" (ids from 0 upwards).
+visualization_msgs::MarkerArray makeSceneMarkers(const pbf::Scene& scene,
+                                                 const std::string& domain_frame,
+                                                 const ros::Time& stamp);
 
 }  // namespace pbf_ros

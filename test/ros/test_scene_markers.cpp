@@ -1,0 +1,59 @@
+// makeSceneMarkers: container and obstacles, in the frames the solver moves them with.
+#include <gtest/gtest.h>
+
+#include "pbf_ros/ros/SceneMarkers.h"
+
+using visualization_msgs::Marker;
+
+namespace {
+pbf::Scene sceneWithObstacles() {
+  pbf::Scene scene;
+  scene.container = Eigen::AlignedBox3f(Eigen::Vector3f::Zero(), Eigen::Vector3f(1.0f, 0.5f, 0.8f));
+  pbf::Obstacle box;
+  box.shape = pbf::Obstacle::Shape::Box;
+  box.half_extents = Eigen::Vector3f(0.1f, 0.2f, 0.3f);
+  box.pose = Eigen::Isometry3f(Eigen::Translation3f(0.5f, 0.25f, 0.1f));
+  pbf::Obstacle capsule;
+  capsule.shape = pbf::Obstacle::Shape::Capsule;
+  capsule.frame = "cup";
+  capsule.offset = Eigen::Isometry3f(Eigen::Translation3f(0.2f, 0.2f, 0.2f));
+  scene.obstacles = {box, capsule};
+  return scene;
+}
+}  // namespace
+
+TEST(SceneMarkers, StartsWithDeleteAllThenTheContainer) {
+  const auto array = pbf_ros::makeSceneMarkers(sceneWithObstacles(), "fluid_domain", ros::Time());
+  ASSERT_GE(array.markers.size(), 3u);
+  EXPECT_EQ(array.markers[0].action, Marker::DELETEALL);
+  EXPECT_EQ(array.markers[1].ns, "container");
+  EXPECT_EQ(array.markers[1].type, Marker::LINE_LIST);
+  EXPECT_EQ(array.markers[1].points.size(), 24u);  // 12 edges
+  EXPECT_EQ(array.markers[1].header.frame_id, "fluid_domain");
+}
+
+TEST(SceneMarkers, ObstaclesHaveTheirShapeSizeAndFrame) {
+  const auto array = pbf_ros::makeSceneMarkers(sceneWithObstacles(), "fluid_domain", ros::Time());
+  std::vector<Marker> obstacles;
+  for (const auto& m : array.markers)
+    if (m.ns == "obstacles") obstacles.push_back(m);
+  ASSERT_EQ(obstacles.size(), 4u);  // box + capsule (cylinder and two end spheres)
+  EXPECT_EQ(obstacles[0].type, Marker::CUBE);
+  EXPECT_FLOAT_EQ(obstacles[0].scale.y, 0.4f);
+  EXPECT_FLOAT_EQ(obstacles[0].pose.position.x, 0.5f);
+  EXPECT_EQ(obstacles[0].header.frame_id, "fluid_domain");
+  EXPECT_EQ(obstacles[1].type, Marker::CYLINDER);
+  EXPECT_EQ(obstacles[1].header.frame_id, "cup");  // attached: drawn in its frame
+  EXPECT_TRUE(obstacles[1].frame_locked);          // ... and follows it
+  EXPECT_FLOAT_EQ(obstacles[1].pose.position.x, 0.2f);
+  EXPECT_EQ(obstacles[2].type, Marker::SPHERE);
+  for (std::size_t i = 0; i < obstacles.size(); ++i)
+    for (std::size_t j = i + 1; j < obstacles.size(); ++j) EXPECT_NE(obstacles[i].id, obstacles[j].id);
+}
+
+TEST(SceneMarkers, AttachedContainerIsDrawnInItsFrame) {
+  pbf::Scene scene = sceneWithObstacles();
+  scene.container_frame = "tank";
+  const auto array = pbf_ros::makeSceneMarkers(scene, "fluid_domain", ros::Time());
+  EXPECT_EQ(array.markers[1].header.frame_id, "tank");
+}
