@@ -26,11 +26,7 @@ add_dependencies(pbf_ros_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NA
 add_executable(pbf_node src/nodes/pbf_node.cpp)
 target_link_libraries(pbf_node pbf_ros_node)
 
-# Demo helper: a tf frame that oscillates or tilts (carries a container or obstacles).
-add_executable(moving_frame src/nodes/moving_frame.cpp)
-target_link_libraries(moving_frame ${catkin_LIBRARIES})
-
-install(TARGETS pbf_ros_node pbf_node moving_frame
+install(TARGETS pbf_ros_node pbf_node
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """A container attached to a moving tf frame carries the fluid: in a tank at rest the
-fluid's mean horizontal velocity stays near 0; shaken along x by moving_frame, the water
+fluid's mean horizontal velocity stays near 0; shaken along x by scripts/move_frame.py, the water
 moves along x with it."""
 import sys
 import time
@@ -39,7 +39,7 @@ class AttachedFramesTest(unittest.TestCase):
 
 if __name__ == '__main__':
     rospy.init_node('test_attached_frames')
-    if '--baseline' in sys.argv:  # manual check: run without moving_frame
+    if '--baseline' in sys.argv:  # manual check: run without move_frame.py
         print('largest |mean vx| at rest: %.3f' % largest_mean_vx(3.0))
     else:
         rostest.rosrun('pbf_ros', 'attached_frames', AttachedFramesTest)
