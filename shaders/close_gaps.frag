@@ -8,51 +8,50 @@
 // particle radius a centimetre).
 //
 // The fix is a grey-scale erosion towards the eye with a paraboloid structuring element:
-//   closed(p) = min over q of [ depth(q) + radius * |p - q|^2 / reach^2 ]
-// with reach = gap_fraction * (the particle radius in pixels at p). A neighbour wins
-// where it is nearer by more than the penalty, which a gap (a radius deep or more, and at
-// most 0.41 r wide between four touching spheres) is, and a gently curved surface is not.
+//   closed(p) = min over q of [ depth(q) + radius * |p - q|^2 / reach(q)^2 ]
+// with reach = gap_fraction * (the particle radius in pixels at that depth). A neighbour
+// wins where it is nearer by more than the penalty, which a gap (a radius deep or more, and
+// at most 0.41 r wide between four touching spheres) is, and a gently curved surface is not.
 // Unlike a plain minimum over a disc of integer radius, the result changes continuously
-// with the reach and does not depend on the direction: a disc whose radius jumps from 2 to
-// 3 pixels where the depth crosses some value prints a band across the image.
+// with the reach and does not depend on the direction (a disc whose radius jumps from 2 to
+// 3 pixels where the depth crosses some value prints a band across the image). Since
+// |p - q|^2 = dx^2 + dy^2, the erosion is exactly separable: a pass along x, then along y.
 // Pixels without fluid stay without fluid, so silhouettes keep their place.
 //
-// Also converts the sphere pass's output (nearest depth, a huge value where no sphere
-// was drawn) to the (depth, coverage) pairs the later passes read.
+// Pass 1 (x): in r = sphere depth (>= kNoFluid where none), out r = eroded along x.
+// Pass 2 (y): in r = pass 1, out rg = (depth, coverage) with coverage from the sphere depth
+//             in `coverage_texture`, the layout the later passes read.
 
-const float kNoFluid = 1e29;      // the sphere pass clears to 1e30
-uniform sampler2D depth_texture;  // r = linear depth (m), >= kNoFluid where no fluid
+const float kNoFluid = 1e29;         // the sphere pass clears to 1e30
+uniform sampler2D depth_texture;
+uniform sampler2D coverage_texture;  // pass 2: the sphere depth
+uniform ivec2 direction;             // (1, 0) or (0, 1)
+uniform bool final_pass;
 uniform float focal_pixels;
-uniform float radius;             // particle radius (m)
-uniform float gap_fraction;       // reach in particle radii
-uniform int max_reach;            // pixels
+uniform float radius;                // particle radius (m)
+uniform float gap_fraction;          // reach in particle radii
+uniform int extent;                  // pixels searched each way (0: just convert)
 
-layout(location = 0) out vec2 depth_and_coverage;
+layout(location = 0) out vec2 result;
 
 void main() {
   ivec2 size = textureSize(depth_texture, 0);
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  float center = texelFetch(depth_texture, pixel, 0).r;
-  if (center >= kNoFluid) {
-    depth_and_coverage = vec2(0.0);
+  if (final_pass && texelFetch(coverage_texture, pixel, 0).r >= kNoFluid) {
+    result = vec2(0.0);
     return;
   }
-  float reach = gap_fraction * radius * focal_pixels / center;
-  if (reach < 0.25) {
-    depth_and_coverage = vec2(center, 1.0);
-    return;
-  }
-  // Beyond 1.5 reach a neighbour must be 2.25 radii nearer to matter: that is another
-  // surface in front, which the narrow-range filter handles, not a gap.
-  int extent = min(max_reach, int(ceil(1.5 * reach)));
-  float penalty_per_sq_pixel = radius / (reach * reach);
-  float nearest = center;
-  for (int dy = -extent; dy <= extent; ++dy)
-    for (int dx = -extent; dx <= extent; ++dx) {
-      ivec2 p = pixel + ivec2(dx, dy);
+  // penalty = radius * d^2 / reach^2 with reach = gap_fraction * radius * focal / depth.
+  float penalty_scale = 1.0 / (gap_fraction * gap_fraction * radius * focal_pixels *
+                               focal_pixels);
+  float nearest = texelFetch(depth_texture, pixel, 0).r;
+  for (int i = 1; i <= extent; ++i) {
+    for (int side = -1; side <= 1; side += 2) {
+      ivec2 p = pixel + side * i * direction;
       if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) continue;
       float d = texelFetch(depth_texture, p, 0).r;  // no fluid: 1e30, never the nearest
-      nearest = min(nearest, d + penalty_per_sq_pixel * float(dx * dx + dy * dy));
+      nearest = min(nearest, d + penalty_scale * d * d * float(i * i));
     }
-  depth_and_coverage = vec2(nearest, 1.0);
+  }
+  result = final_pass ? vec2(nearest, 1.0) : vec2(nearest, 0.0);
 }

@@ -32,6 +32,7 @@ constexpr int kUnitDepth = 0, kUnitNormals = 1, kUnitThickness = 2, kUnitCenters
 
 constexpr GLfloat kClearDepth[4] = {1e30f, 0, 0, 0};  // "no fluid" for MIN blending
 constexpr GLfloat kClearThickness[4] = {0, 0, 0, 0};
+constexpr GLfloat kClearZero[4] = {0, 0, 0, 0};
 
 constexpr TextureFormat kFloatRed{GL_R32F, GL_RED, GL_FLOAT};
 constexpr TextureFormat kFloatRg{GL_RG32F, GL_RG, GL_FLOAT};
@@ -77,7 +78,8 @@ struct FluidRenderer::Impl {
   ShaderProgram sphere_program, narrow_range_program, bilateral_program,
       normals_program, background_program, composite_program, close_gaps_program,
       prefilter_program;
-  std::unique_ptr<RenderTarget> raw_depth, closed_depth, prefilter_half, prefiltered_depth,
+  std::unique_ptr<RenderTarget> raw_depth, gap_half, closed_depth, prefilter_half,
+      prefiltered_depth,
       thickness, smoothed_depth, normals, background, color;
   // Draws depth and thickness in one pass (both targets attached), when GL >= 4.0.
   GLuint sphere_framebuffer = 0;
@@ -126,6 +128,7 @@ struct FluidRenderer::Impl {
     gl.Uniform1i(normals_program.uniform("depth_texture"), kUnitDepth);
     close_gaps_program.use();
     gl.Uniform1i(close_gaps_program.uniform("depth_texture"), kUnitDepth);
+    gl.Uniform1i(close_gaps_program.uniform("coverage_texture"), kUnitNormals);
     prefilter_program.use();
     gl.Uniform1i(prefilter_program.uniform("depth_texture"), kUnitDepth);
     gl.Uniform1i(prefilter_program.uniform("coverage_texture"), kUnitNormals);
@@ -138,6 +141,7 @@ struct FluidRenderer::Impl {
     gl.UseProgram(0);
 
     raw_depth = std::make_unique<RenderTarget>(gl, kFloatRed, "sphere depth");
+    gap_half = std::make_unique<RenderTarget>(gl, kFloatRed, "gap closing, 1st axis");
     closed_depth = std::make_unique<RenderTarget>(gl, kFloatRg, "gap-closed depth");
     prefilter_half = std::make_unique<RenderTarget>(gl, kFloatRg, "prefilter, 1st axis");
     prefiltered_depth = std::make_unique<RenderTarget>(gl, kFloatRg, "prefiltered depth");
@@ -172,11 +176,10 @@ struct FluidRenderer::Impl {
 
   // Clears the whole target, then limits drawing to the fluid's bounding rectangle: the
   // screen-space passes cost nothing outside the fluid.
-  void beginScreenPass(const RenderTarget& target) {
+  void beginScreenPass(const RenderTarget& target, const GLfloat* clear_value = kClearZero) {
     target.bindForDrawing();
     gl.Disable(GL_SCISSOR_TEST);
-    gl.ClearColor(0, 0, 0, 0);
-    gl.Clear(GL_COLOR_BUFFER_BIT);
+    gl.ClearBufferfv(GL_COLOR, 0, clear_value);
     gl.Enable(GL_SCISSOR_TEST);
     gl.Scissor(visible.x_begin, visible.y_begin, visible.x_end - visible.x_begin,
                visible.y_end - visible.y_begin);
@@ -256,15 +259,34 @@ struct FluidRenderer::Impl {
     gl.Disable(GL_BLEND);
   }
 
-  // (depth, coverage) pairs from the sphere depth, with the gaps closed (close_gaps.frag).
+  // (depth, coverage) pairs from the sphere depth, with the gaps closed (close_gaps.frag,
+  // a pass along x and one along y). gap_fraction 0 only converts.
   void resolveDepth(float gap_fraction, float focal, float radius) {
-    beginScreenPass(*closed_depth);
+    // How far the erosion can matter: 1.5 reach at the nearest sphere (beyond that a
+    // neighbour must be 2.25 radii nearer, another surface, not a gap), at most 6 pixels.
+    const float reach = visible.nearest_depth > 0
+                            ? gap_fraction * radius * focal / visible.nearest_depth
+                            : 0.0f;
+    const int extent = reach < 0.25f ? 0 : std::min(6, static_cast<int>(std::ceil(1.5f * reach)));
     close_gaps_program.use();
     gl.Uniform1f(close_gaps_program.uniform("focal_pixels"), focal);
     gl.Uniform1f(close_gaps_program.uniform("radius"), radius);
-    gl.Uniform1f(close_gaps_program.uniform("gap_fraction"), gap_fraction);
-    gl.Uniform1i(close_gaps_program.uniform("max_reach"), 6);
-    raw_depth->bindColorTexture(kUnitDepth);
+    gl.Uniform1f(close_gaps_program.uniform("gap_fraction"), std::max(gap_fraction, 1e-3f));
+    gl.Uniform1i(close_gaps_program.uniform("extent"), extent);
+    const RenderTarget* source = raw_depth.get();
+    if (extent > 0) {
+      beginScreenPass(*gap_half, kClearDepth);  // read beyond the rectangle: no fluid
+      gl.Uniform2i(close_gaps_program.uniform("direction"), 1, 0);
+      gl.Uniform1i(close_gaps_program.uniform("final_pass"), 0);
+      raw_depth->bindColorTexture(kUnitDepth);
+      drawFullscreen();
+      source = gap_half.get();
+    }
+    beginScreenPass(*closed_depth);
+    gl.Uniform2i(close_gaps_program.uniform("direction"), 0, 1);
+    gl.Uniform1i(close_gaps_program.uniform("final_pass"), 1);
+    source->bindColorTexture(kUnitDepth);
+    raw_depth->bindColorTexture(kUnitNormals);  // coverage
     drawFullscreen();
   }
 
@@ -475,6 +497,7 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
   const bool need_thickness = request.image || request.thickness;
   const bool need_normals = request.image || request.normals;
   r.raw_depth->resize(w, h);
+  r.gap_half->resize(w, h);
   r.closed_depth->resize(w, h);
   if (options_.filter != DepthFilter::None) {
     r.prefilter_half->resize(w, h);

@@ -35,6 +35,7 @@ void selectVisibleParticles(const std::vector<Eigen::Vector3f>& positions, float
   const float half_w = 0.5f * camera.width, half_h = 0.5f * camera.height;
   float x_min = std::numeric_limits<float>::max(), y_min = x_min;
   float x_max = std::numeric_limits<float>::lowest(), y_max = x_max;
+  float nearest_centre = std::numeric_limits<float>::max();
 
   out.view_positions.clear();
   out.view_positions.reserve(positions.size());
@@ -53,6 +54,7 @@ void selectVisibleParticles(const std::vector<Eigen::Vector3f>& positions, float
     const float nearest = std::max(depth - radius, camera.near_clip);
     const float reach = focal * radius / nearest * (1.0f + std::abs(v.x() / depth) +
                                                    std::abs(v.y() / depth));
+    nearest_centre = std::min(nearest_centre, depth);
     x_min = std::min(x_min, centre_x - reach);
     x_max = std::max(x_max, centre_x + reach);
     y_min = std::min(y_min, centre_y - reach);
@@ -65,6 +67,7 @@ void selectVisibleParticles(const std::vector<Eigen::Vector3f>& positions, float
   }
   out.surface_count = out.view_positions.size();
   out.x_begin = out.y_begin = out.x_end = out.y_end = 0;
+  out.nearest_depth = x_max >= x_min ? std::max(nearest_centre, camera.near_clip) : 0.0f;
   if (x_max >= x_min) {  // something is visible; pad by a pixel against rounding
     out.x_begin = std::clamp(static_cast<int>(std::floor(x_min)) - 1, 0, camera.width);
     out.x_end = std::clamp(static_cast<int>(std::ceil(x_max)) + 1, 0, camera.width);

@@ -20,6 +20,8 @@ struct VisibleParticles {
   // visible sphere's silhouette; the screen-space passes run only inside it. Empty
   // (x_end <= x_begin) when nothing is visible.
   int x_begin = 0, y_begin = 0, x_end = 0, y_end = 0;
+  // Depth (along the optical axis) of the nearest visible sphere centre; 0 if none.
+  float nearest_depth = 0;
   std::vector<Eigen::Vector4f> interior_scratch;  // reused between frames
 };
 
