@@ -16,11 +16,16 @@
 // with the reach and does not depend on the direction (a disc whose radius jumps from 2 to
 // 3 pixels where the depth crosses some value prints a band across the image). Since
 // |p - q|^2 = dx^2 + dy^2, the erosion is exactly separable: a pass along x, then along y.
-// Pixels without fluid stay without fluid, so silhouettes keep their place.
 //
-// Pass 1 (x): in r = sphere depth (>= kNoFluid where none), out r = eroded along x.
-// Pass 2 (y): in r = pass 1, out rg = (depth, coverage) with coverage from the sphere depth
-//             in `coverage_texture`, the layout the later passes read.
+// Some rays find no sphere at all, between the particles of a thin sheet: pinholes. A
+// pixel without fluid becomes fluid when there is fluid on both sides of it within the
+// search extent, along x or along y (a closing of the fluid mask, which leaves convex
+// silhouettes where they are); it then takes its eroded depth like any other.
+//
+// Pass 1 (x): in r = sphere depth (>= kNoFluid where none), out r = eroded along x,
+//             g = 1 where fluid is on both sides along x.
+// Pass 2 (y): in rg = pass 1, out rg = (depth, coverage), the layout the later passes read;
+//             `coverage_texture` is the sphere depth, for the mask.
 
 const float kNoFluid = 1e29;         // the sphere pass clears to 1e30
 uniform sampler2D depth_texture;
@@ -37,21 +42,28 @@ layout(location = 0) out vec2 result;
 void main() {
   ivec2 size = textureSize(depth_texture, 0);
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  if (final_pass && texelFetch(coverage_texture, pixel, 0).r >= kNoFluid) {
-    result = vec2(0.0);
-    return;
-  }
   // penalty = radius * d^2 / reach^2 with reach = gap_fraction * radius * focal / depth.
   float penalty_scale = 1.0 / (gap_fraction * gap_fraction * radius * focal_pixels *
                                focal_pixels);
-  float nearest = texelFetch(depth_texture, pixel, 0).r;
+  vec2 here = texelFetch(depth_texture, pixel, 0).rg;
+  float nearest = here.r;
+  bool fluid_before = false, fluid_after = false;  // along this pass's axis
   for (int i = 1; i <= extent; ++i) {
     for (int side = -1; side <= 1; side += 2) {
       ivec2 p = pixel + side * i * direction;
       if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) continue;
       float d = texelFetch(depth_texture, p, 0).r;  // no fluid: 1e30, never the nearest
       nearest = min(nearest, d + penalty_scale * d * d * float(i * i));
+      bool fluid = (final_pass ? texelFetch(coverage_texture, p, 0).r : d) < kNoFluid;
+      if (side < 0) fluid_before = fluid_before || fluid;
+      else fluid_after = fluid_after || fluid;
     }
   }
-  result = final_pass ? vec2(nearest, 1.0) : vec2(nearest, 0.0);
+  bool enclosed = fluid_before && fluid_after;
+  if (!final_pass) {
+    result = vec2(nearest, enclosed ? 1.0 : 0.0);
+    return;
+  }
+  bool fluid = texelFetch(coverage_texture, pixel, 0).r < kNoFluid || here.g > 0.5 || enclosed;
+  result = fluid && nearest < kNoFluid ? vec2(nearest, 1.0) : vec2(0.0);
 }

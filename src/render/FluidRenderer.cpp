@@ -141,7 +141,7 @@ struct FluidRenderer::Impl {
     gl.UseProgram(0);
 
     raw_depth = std::make_unique<RenderTarget>(gl, kFloatRed, "sphere depth");
-    gap_half = std::make_unique<RenderTarget>(gl, kFloatRed, "gap closing, 1st axis");
+    gap_half = std::make_unique<RenderTarget>(gl, kFloatRg, "gap closing, 1st axis");
     closed_depth = std::make_unique<RenderTarget>(gl, kFloatRg, "gap-closed depth");
     prefilter_half = std::make_unique<RenderTarget>(gl, kFloatRg, "prefilter, 1st axis");
     prefiltered_depth = std::make_unique<RenderTarget>(gl, kFloatRg, "prefiltered depth");
@@ -263,11 +263,13 @@ struct FluidRenderer::Impl {
   // a pass along x and one along y). gap_fraction 0 only converts.
   void resolveDepth(float gap_fraction, float focal, float radius) {
     // How far the erosion can matter: 1.5 reach at the nearest sphere (beyond that a
-    // neighbour must be 2.25 radii nearer, another surface, not a gap), at most 6 pixels.
+    // neighbour must be 2.25 radii nearer, another surface, not a gap), at most 6 pixels;
+    // at least 2, to fill pinholes.
     const float reach = visible.nearest_depth > 0
                             ? gap_fraction * radius * focal / visible.nearest_depth
                             : 0.0f;
-    const int extent = reach < 0.25f ? 0 : std::min(6, static_cast<int>(std::ceil(1.5f * reach)));
+    const int extent =
+        gap_fraction <= 0 ? 0 : std::clamp(static_cast<int>(std::ceil(1.5f * reach)), 2, 6);
     close_gaps_program.use();
     gl.Uniform1f(close_gaps_program.uniform("focal_pixels"), focal);
     gl.Uniform1f(close_gaps_program.uniform("radius"), radius);
