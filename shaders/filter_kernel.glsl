@@ -12,7 +12,7 @@
 // piecewise linear in the pixel position, and the kinks, small in depth, showed up as a
 // grid in the normals. Exact texels of a blurred image have no kinks.)
 
-const int MAX_OFFSETS = 512;
+const int MAX_OFFSETS = 128;
 uniform vec2 offsets[MAX_OFFSETS];   // half-disc integer offsets, sorted by length
 uniform int offset_count;
 uniform float offset_units_max;      // length of the longest offset

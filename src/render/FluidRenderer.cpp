@@ -24,7 +24,7 @@ constexpr int kFilterOffsetRadius = 8;
 // aliasing (it attenuates the grid's alias frequency, 1/2 cycle per pixel, by e^-7),
 // small next to the smoothing kernel itself.
 constexpr float kPrefilterSigmaPixels = 1.2f;
-constexpr int kMaxFilterOffsets = 512;  // MAX_OFFSETS in filter_kernel.glsl
+constexpr int kMaxFilterOffsets = 128;  // MAX_OFFSETS in filter_kernel.glsl
 
 // Texture units, fixed per program at set-up.
 constexpr int kUnitDepth = 0, kUnitNormals = 1, kUnitThickness = 2, kUnitCenters = 3,

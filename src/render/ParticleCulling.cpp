@@ -43,6 +43,7 @@ void selectVisibleParticles(const std::vector<Eigen::Vector3f>& positions, float
   interior.clear();
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Eigen::Vector3f v = rotation * positions[i] + translation;
+    if (!v.allFinite()) continue;  // a diverged particle must not reach the GPU
     const float depth = -v.z();
     if (depth < near_limit || depth > far_limit) continue;
     if (std::abs(v.x()) > tan_x * depth + slack_x) continue;

@@ -141,6 +141,7 @@ TEST_F(RendererApi, ParticlesOutsideTheViewAreCulled) {
   particles.emplace_back(5.0f, -5.0f, 5.0f);    // behind the camera
   particles.emplace_back(-3.0f, 3.0f, -20.0f);  // far below the view
   particles.emplace_back(0.0f, 0.0f, 20.0f);    // far above the view
+  particles.emplace_back(std::nanf(""), 0.0f, 0.2f);  // diverged: never drawn
   pbf::RenderOutput out;
   renderer_.render(particles, 0.01f, smallCamera(), pbf_test::everything(), out);
   EXPECT_EQ(out.particles_in_view, in_view);

@@ -3,7 +3,8 @@
 // depth filter of Truong & Yuksel 2018): particles -> sphere depth -> smoothed depth ->
 // normals -> shaded water over a procedural floor, plus a metric depth image.
 //
-// Usage (one thread owns the renderer and its GL context):
+// Usage. The renderer owns its GL context, which is current on one thread at a time:
+// construct, render and destroy it on the same (render) thread.
 //   pbf::FluidRenderer renderer(pbf::createGlBackend("osmesa"), shader_dir);
 //   pbf::RenderOutput out;
 //   renderer.render(positions, radius, camera, pbf::RenderRequest{}, out);
