@@ -147,6 +147,40 @@ TEST_F(RendererApi, ParticlesOutsideTheViewAreCulled) {
   EXPECT_EQ(out.particles_in_view, in_view);
 }
 
+// Culling is conservative: a sphere whose centre is outside the image but whose body
+// reaches into it is drawn.
+TEST_F(RendererApi, SpheresReachingInFromOutsideTheImageAreDrawn) {
+  const pbf::RenderCamera camera = smallCamera();
+  const pbf::PinholeIntrinsics k = pbf::intrinsicsOf(camera);
+  const float depth = 1.0f, radius = 0.05f;  // about 7 pixels in radius
+  // Centre 3 pixels beyond the left edge, level with the image centre.
+  const Eigen::Vector3f centre_camera(static_cast<float>((-3.0 - k.cx) / k.fx) * depth, 0.0f,
+                                      depth);
+  const Eigen::Vector3f centre = camera.camera_to_world * centre_camera;
+  pbf::RenderOutput out;
+  renderer_.render({centre}, radius, camera, pbf::RenderRequest{false, true, false, false}, out);
+  EXPECT_EQ(out.particles_in_view, 1u);
+  const float* row = &out.depth[static_cast<std::size_t>(camera.height / 2) * camera.width];
+  EXPECT_TRUE(std::isfinite(row[0]));
+  EXPECT_TRUE(std::isfinite(row[2]));
+  EXPECT_FALSE(std::isfinite(row[12]));
+}
+
+TEST_F(RendererApi, PassTimingsAddUpToTheFrame) {
+  pbf::RenderOutput out;
+  renderer_.render(smallBall(), 0.01f, smallCamera(), pbf_test::everything(), out);
+  const pbf::RenderTimings& t = out.timings;
+  const double sum = t.cull_upload + t.depth + t.thickness + t.filter + t.normals +
+                     t.composite + t.readback;
+  for (double ms : {t.cull_upload, t.depth, t.thickness, t.filter, t.normals, t.composite,
+                    t.readback})
+    EXPECT_GE(ms, 0.0);
+  EXPECT_GT(t.depth, 0.0);
+  EXPECT_GT(t.composite, 0.0);
+  EXPECT_LE(sum, t.total + 1e-6);
+  EXPECT_GT(sum, 0.9 * t.total);
+}
+
 TEST_F(RendererApi, SurfaceOnlyDrawsFewerParticlesInTheDepthPass) {
   const std::vector<Eigen::Vector3f> particles = smallBall();
   // Neighbour counts within 1.5 spacings: interior lattice points have 18.
