@@ -5,8 +5,8 @@
 // cost per pixel is bounded; a close-up gets a narrower kernel, not a slower one).
 // Taps are exact texels of the prefiltered depth (prefilter_depth.frag), visited through
 // `offsets`, a half-disc of integer offsets sorted by length, each used with its mirror
-// image. Kernels wider than the offsets reach step 2 pixels per offset unit: the prefilter
-// has removed what a 2-pixel grid would alias, and a tap then stands for 4 pixels.
+// image. Kernels of sigma >= 2 pixels step 2 pixels per offset unit: the prefilter has
+// removed what a 2-pixel grid would alias, and a tap then stands for 4 pixels.
 //
 // (Sparse taps from mipmap levels were tried first: bilinear interpolation makes each tap
 // piecewise linear in the pixel position, and the kinks, small in depth, showed up as a
@@ -33,7 +33,9 @@ Kernel kernelAt(float center_depth) {
   Kernel k;
   float sigma = sigma_world * focal_pixels / center_depth;
   k.window = min(2.5 * sigma, min(max_radius_pixels, 2.0 * offset_units_max));
-  k.stride = k.window > offset_units_max ? 2 : 1;
+  // Every other pixel once sigma >= 2 pixels: a Gaussian sampled every sigma pixels still
+  // sums to its integral within exp(-2 pi^2) (about 3e-9), and it quarters the taps.
+  k.stride = k.window >= 5.0 ? 2 : 1;
   sigma = k.window / 2.5;
   k.inverse_two_sigma_sq = 1.0 / (2.0 * sigma * sigma);
   // Taps fade to zero at the window's edge: a tap entering the window as it grows with
