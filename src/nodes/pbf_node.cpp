@@ -11,6 +11,9 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   try {
     pbf_ros::FluidNode node(nh, private_nh);
+    // A surface render thread plugs in here: construct it with node.snapshots() (it sets
+    // a requested rate while its topics have subscribers and reads latest()); it owns its
+    // GL context and never blocks the simulation.
     // Two threads: a service may wait for the simulation thread while reconfigure or
     // diagnostics are served.
     ros::AsyncSpinner spinner(2);

@@ -24,6 +24,15 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
 
   for (const std::string& note : sanitizeConfig(config, applied_config_)) refuse(note);
 
+  // What the user has set (start-up parameters, earlier requests, this request) stays set
+  // across scene changes; everything else follows the scene.
+  std::set<std::string> requested = changedParams(config, applied_config_);
+  requested.erase("scene");
+  FluidConfig user_config = user_config_;
+  overlayParams(config, requested, user_config);
+  std::set<std::string> user_names = user_param_names_;
+  user_names.insert(requested.begin(), requested.end());
+
   // The scene: load and check it here, so a bad one is refused before anything changes.
   pbf::Scene scene = applied_scene_;
   bool rebuild = false;
@@ -31,10 +40,10 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
     try {
       scene = loadScene(config.scene, scenes_dir_);
       rebuild = true;
-      // The new scene brings its solver settings; the user's start-up overrides stay on top.
+      // The new scene brings its solver settings; the user's own settings stay on top.
       FluidConfig fresh = config;
       solverParamsToConfig(scene.solver, fresh);
-      overlayParams(user_config_, user_param_names_, fresh);
+      overlayParams(user_config, user_names, fresh);
       for (const std::string& note : sanitizeConfig(fresh, applied_config_)) refuse(note);
       config = fresh;
     } catch (const pbf::SceneError& e) {
@@ -112,6 +121,8 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
   applied_config_ = config;
   applied_scene_ = scene;
   applied_scene_.solver = params;
+  user_config_ = user_config;
+  user_param_names_ = user_names;
 }
 
 }  // namespace pbf_ros

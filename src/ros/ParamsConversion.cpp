@@ -136,6 +136,16 @@ void overlayParams(const FluidConfig& from, const std::set<std::string>& names,
   }
 }
 
+std::set<std::string> changedParams(const FluidConfig& a, const FluidConfig& b) {
+  std::set<std::string> names;
+  for (const auto& desc : FluidConfig::__getParamDescriptions__()) {
+    std::uint32_t level = 0;
+    desc->calcLevel(level, a, b);  // ORs in the parameter's level bit when values differ
+    if (level != 0) names.insert(desc->name);
+  }
+  return names;
+}
+
 std::vector<std::string> configParamNames() {
   std::vector<std::string> names;
   for (const auto& desc : FluidConfig::__getParamDescriptions__()) names.push_back(desc->name);

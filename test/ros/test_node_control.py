@@ -117,11 +117,13 @@ class NodeControlTest(unittest.TestCase):
         self.assertEqual(after.particle_count, before.particle_count)
 
     def test_scene_change_resets_the_fluid(self):
+        self.reconfigure.update_configuration({'xsph_c': 0.3})
         before = self.stats.next(timeout=20.0, condition=lambda m: m.step_count > 20)
         config = self.reconfigure.update_configuration({'scene': 'hydrostatic_tank'})
         self.assertEqual(config['scene'], 'hydrostatic_tank')
-        # The user's particle_spacing override stays on top of the new scene's settings.
+        # What the user set (particle_spacing at start-up, xsph_c live) stays set.
         self.assertAlmostEqual(config['particle_spacing'], 0.05)
+        self.assertAlmostEqual(config['xsph_c'], 0.3)
         after = self.stats.next(timeout=10.0)
         self.assertNotEqual(after.particle_count, before.particle_count)
         self.assertLess(after.step_count, before.step_count)

@@ -113,3 +113,14 @@ TEST(ParamsConversion, OverlayCopiesOnlyTheNamedParameters) {
   EXPECT_DOUBLE_EQ(scene.particle_spacing, 0.05);
   EXPECT_DOUBLE_EQ(scene.xsph_c, 0.0);
 }
+
+TEST(ParamsConversion, ChangedParamsNamesExactlyTheDifferences) {
+  FluidConfig a = FluidConfig::__getDefault__();
+  FluidConfig b = a;
+  EXPECT_TRUE(pbf_ros::changedParams(a, b).empty());
+  b.xsph_c = 0.5;
+  b.scene = "other";
+  b.unilateral_constraint = !a.unilateral_constraint;
+  EXPECT_EQ(pbf_ros::changedParams(a, b),
+            (std::set<std::string>{"xsph_c", "scene", "unilateral_constraint"}));
+}

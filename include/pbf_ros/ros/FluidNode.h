@@ -112,8 +112,8 @@ class FluidNode {
   bool reconfigure_live_ = false;      // false while the server calls back during start-up
   FluidConfig applied_config_;         // what is in force
   pbf::Scene applied_scene_;           // the scene of applied_config_
-  FluidConfig user_config_;            // parameters as the user set them at start-up
-  std::set<std::string> user_param_names_;  // ... and which ones were set explicitly
+  FluidConfig user_config_;            // parameters as the user set them (start-up, requests)
+  std::set<std::string> user_param_names_;  // ... and which ones the user set
 
   // Simulation thread state (set up in the constructor before the thread starts).
   std::unique_ptr<pbf::PbfSolver> solver_;

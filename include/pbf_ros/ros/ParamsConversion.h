@@ -37,6 +37,9 @@ std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& 
 void overlayParams(const FluidConfig& from, const std::set<std::string>& names,
                    FluidConfig& to);
 
+// Names of the parameters whose values differ between a and b.
+std::set<std::string> changedParams(const FluidConfig& a, const FluidConfig& b);
+
 // Names of every parameter of config/Fluid.cfg.
 std::vector<std::string> configParamNames();
 
