@@ -44,7 +44,9 @@ void main() {
   vec3 point = viewPoint(pixel, depth);
   vec3 along_x = tangent(pixel, depth, point, ivec2(1, 0), size);
   vec3 along_y = tangent(pixel, depth, point, ivec2(0, 1), size);
-  vec3 n = normalize(cross(along_x, along_y));
+  vec3 n = cross(along_x, along_y);
+  // Degenerate tangents (parallel or zero) would normalise to NaN: face the eye instead.
+  n = dot(n, n) > 1e-30 ? normalize(n) : normalize(-point);
   if (dot(n, point) > 0.0) n = -n;  // always face the eye
   normal_out = vec4(n, 1.0);
 }

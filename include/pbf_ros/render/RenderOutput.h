@@ -11,7 +11,9 @@ namespace pbf {
 struct RenderRequest {
   bool image = true;       // shaded RGBA8
   bool depth = true;       // smoothed depth, metres along the optical axis, NaN = no fluid
-  bool thickness = false;  // fluid thickness along each pixel's ray, metres (0 = none)
+  bool thickness = false;  // summed chords of the particle spheres along each pixel's ray
+                           // (m, 0 = none): about half the fluid's thickness, since
+                           // touching spheres fill ~52 % of a lattice
   bool normals = false;    // surface normals in the optical camera frame (0 = none)
 
   bool any() const { return image || depth || thickness || normals; }
