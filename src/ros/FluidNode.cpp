@@ -12,6 +12,19 @@
 
 namespace pbf_ros {
 
+namespace {
+// Whether a parameter server value can be read as a Fluid.cfg parameter of `type`.
+bool hasType(const XmlRpc::XmlRpcValue& value, const std::string& type) {
+  switch (value.getType()) {
+    case XmlRpc::XmlRpcValue::TypeDouble: return type == "double";
+    case XmlRpc::XmlRpcValue::TypeInt: return type == "int" || type == "double";
+    case XmlRpc::XmlRpcValue::TypeBoolean: return type == "bool";
+    case XmlRpc::XmlRpcValue::TypeString: return type == "str";
+    default: return false;
+  }
+}
+}  // namespace
+
 FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), pnh_(private_nh) {
   readNodeSettings();
@@ -86,10 +99,17 @@ void FluidNode::readNodeSettings() {
 FluidConfig FluidNode::startupConfig(const pbf::Scene& scene) {
   user_config_ = FluidConfig::__getDefault__();
   user_config_.__fromServer__(pnh_);
-  for (const std::string& name : configParamNames()) {
-    if (pnh_.hasParam(name)) user_param_names_.insert(name);
+  for (const auto& desc : FluidConfig::__getParamDescriptions__()) {
+    XmlRpc::XmlRpcValue value;
+    if (desc->name == "scene" || !pnh_.getParam(desc->name, value)) continue;
+    if (!hasType(value, desc->type)) {
+      // getParam would silently keep the default: say so instead.
+      ROS_ERROR("pbf_node: parameter ~%s: expected type %s (see config/Fluid.cfg), got %s; "
+                "ignored", desc->name.c_str(), desc->type.c_str(), value.toXml().c_str());
+      continue;
+    }
+    user_param_names_.insert(desc->name);
   }
-  user_param_names_.erase("scene");  // the scene is chosen, not overlaid
 
   FluidConfig from_scene = user_config_;
   solverParamsToConfig(scene.solver, from_scene);
