@@ -22,18 +22,19 @@ std::string FluidNode::runOnSimulation(std::function<std::string()> task) {
 }
 
 bool FluidNode::onResetService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  std::string message;
-  const std::string error = runOnSimulation([this, &message]() -> std::string {
+  // Shared, not a reference: after a shutdown timeout the task may still run.
+  auto message = std::make_shared<std::string>();
+  const std::string error = runOnSimulation([this, message]() -> std::string {
     const pbf::Scene scene = scene_;  // copy: rebuildFluid replaces scene_
     const std::string e = rebuildFluid(scene, solver_->params());
     if (e.empty()) {
-      message = "scene '" + scene_.name + "' reset to its initial state (" +
+      *message = "scene '" + scene_.name + "' reset to its initial state (" +
                 std::to_string(solver_->size()) + " particles)" + (paused_ ? ", paused" : "");
     }
     return e;
   });
   res.success = error.empty();
-  res.message = error.empty() ? message : "reset failed: " + error + "; the fluid keeps running";
+  res.message = error.empty() ? *message : "reset failed: " + error + "; the fluid keeps running";
   if (!res.success) refuse(res.message);
   return true;
 }
@@ -41,8 +42,8 @@ bool FluidNode::onResetService(std_srvs::Trigger::Request&, std_srvs::Trigger::R
 bool FluidNode::onPauseService(std_srvs::SetBool::Request& req,
                                std_srvs::SetBool::Response& res) {
   const bool pause = req.data;
-  std::string message;
-  const std::string error = runOnSimulation([this, pause, &message]() -> std::string {
+  auto message = std::make_shared<std::string>();
+  const std::string error = runOnSimulation([this, pause, message]() -> std::string {
     const bool was_paused = paused_;
     paused_ = pause;
     if (!pause && was_paused) {
@@ -53,18 +54,19 @@ bool FluidNode::onPauseService(std_srvs::SetBool::Request& req,
     m << (pause ? (was_paused ? "already paused" : "paused")
                 : (was_paused ? "resumed" : "already running"))
       << " at sim time " << solver_->time() << " s (step " << solver_->stepCount() << ")";
-    message = m.str();
+    *message = m.str();
     updateHealth();
     return "";
   });
   res.success = error.empty();
-  res.message = error.empty() ? message : error;
+  res.message = error.empty() ? *message : error;
   return true;
 }
 
 bool FluidNode::onStepService(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  std::string message;
-  const std::string error = runOnSimulation([this, &message]() -> std::string {
+  // Shared, not a reference: after a shutdown timeout the task may still run.
+  auto message = std::make_shared<std::string>();
+  const std::string error = runOnSimulation([this, message]() -> std::string {
     if (!paused_) return "~step works only while paused; call ~pause with data: true first";
     stepOnce();
     publishDue(wallNow(), /*force=*/true);  // show the user what the step did
@@ -72,11 +74,11 @@ bool FluidNode::onStepService(std_srvs::Trigger::Request&, std_srvs::Trigger::Re
     m << "stepped to sim time " << solver_->time() << " s (step " << solver_->stepCount()
       << ", dt " << last_stats_.dt << " s" << (last_stats_.failed ? ", step failed" : "")
       << ")";
-    message = m.str();
+    *message = m.str();
     return "";
   });
   res.success = error.empty();
-  res.message = error.empty() ? message : error;
+  res.message = error.empty() ? *message : error;
   return true;
 }
 
