@@ -31,7 +31,6 @@ constexpr int kUnitDepth = 0, kUnitNormals = 1, kUnitThickness = 2, kUnitCenters
               kUnitBackground = 4;
 
 constexpr GLfloat kClearDepth[4] = {1e30f, 0, 0, 0};  // "no fluid" for MIN blending
-constexpr GLfloat kClearThickness[4] = {0, 0, 0, 0};
 constexpr GLfloat kClearZero[4] = {0, 0, 0, 0};
 
 constexpr TextureFormat kFloatRed{GL_R32F, GL_RED, GL_FLOAT};
@@ -77,13 +76,12 @@ struct FluidRenderer::Impl {
   GlFunctions gl;
   ShaderProgram sphere_program, narrow_range_program, bilateral_program,
       normals_program, background_program, composite_program, close_gaps_program,
-      prefilter_program;
-  std::unique_ptr<RenderTarget> raw_depth, gap_half, closed_depth, prefilter_half,
+      prefilter_program, thickness_program;
+  std::unique_ptr<RenderTarget> raw_depth, far_depth, gap_half, closed_depth, prefilter_half,
       prefiltered_depth,
       thickness, smoothed_depth, normals, background, color;
   // Draws depth and thickness in one pass (both targets attached), when GL >= 4.0.
   GLuint sphere_framebuffer = 0;
-  int sphere_framebuffer_width = 0, sphere_framebuffer_height = 0;
   // Sphere centres: a buffer object read by the imposter vertex shader as a buffer texture.
   GLuint particle_buffer = 0, particle_texture = 0, empty_vao = 0;
   VisibleParticles visible;
@@ -108,6 +106,8 @@ struct FluidRenderer::Impl {
     composite_program = ShaderProgram(gl, dir, "fullscreen.vert", "composite.frag");
     close_gaps_program = ShaderProgram(gl, dir, "fullscreen.vert", "close_gaps.frag");
     prefilter_program = ShaderProgram(gl, dir, "fullscreen.vert", "prefilter_depth.frag");
+    thickness_program =
+        ShaderProgram(gl, dir, "fullscreen.vert", "thickness_from_depths.frag");
 
     // Constant uniforms: texture units and the filters' offsets.
     sphere_program.use();
@@ -129,6 +129,9 @@ struct FluidRenderer::Impl {
     close_gaps_program.use();
     gl.Uniform1i(close_gaps_program.uniform("depth_texture"), kUnitDepth);
     gl.Uniform1i(close_gaps_program.uniform("coverage_texture"), kUnitNormals);
+    thickness_program.use();
+    gl.Uniform1i(thickness_program.uniform("near_texture"), kUnitDepth);
+    gl.Uniform1i(thickness_program.uniform("far_texture"), kUnitNormals);
     prefilter_program.use();
     gl.Uniform1i(prefilter_program.uniform("depth_texture"), kUnitDepth);
     gl.Uniform1i(prefilter_program.uniform("coverage_texture"), kUnitNormals);
@@ -141,6 +144,7 @@ struct FluidRenderer::Impl {
     gl.UseProgram(0);
 
     raw_depth = std::make_unique<RenderTarget>(gl, kFloatRed, "sphere depth");
+    far_depth = std::make_unique<RenderTarget>(gl, kFloatRed, "far sphere depth");
     gap_half = std::make_unique<RenderTarget>(gl, kFloatRg, "gap closing, 1st axis");
     closed_depth = std::make_unique<RenderTarget>(gl, kFloatRg, "gap-closed depth");
     prefilter_half = std::make_unique<RenderTarget>(gl, kFloatRg, "prefilter, 1st axis");
@@ -194,10 +198,30 @@ struct FluidRenderer::Impl {
     gl.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, particle_buffer);
   }
 
-  void setSphereUniforms(const Eigen::Matrix4f& projection, float radius) {
+  // What the sphere pass's second output accumulates (sphere_surface.frag).
+  enum class SecondOutput {
+    Chords,    // summed chord lengths, ADD-blended into `thickness`: every particle
+    FarDepth,  // depth of the farthest sphere back face, MAX-blended into `far_depth`:
+               // surface particles only, thickness resolved afterwards as far - near
+  };
+
+  void setSphereUniforms(const Eigen::Matrix4f& projection, float radius, SecondOutput second) {
     sphere_program.use();
     gl.UniformMatrix4fv(sphere_program.uniform("projection"), 1, GL_FALSE, projection.data());
     gl.Uniform1f(sphere_program.uniform("radius"), radius);
+    gl.Uniform1i(sphere_program.uniform("far_depth_output"),
+                 second == SecondOutput::FarDepth ? 1 : 0);
+  }
+
+  RenderTarget& secondTarget(SecondOutput second) {
+    return second == SecondOutput::FarDepth ? *far_depth : *thickness;
+  }
+  static GLenum secondEquation(SecondOutput second) {
+    return second == SecondOutput::FarDepth ? GL_MAX : GL_FUNC_ADD;
+  }
+  GLsizei secondCount(SecondOutput second) const {
+    return static_cast<GLsizei>(second == SecondOutput::FarDepth ? visible.surface_count
+                                                                  : visible.view_positions.size());
   }
 
   // Depth target cleared to "no fluid", then MIN-blended (sphere_surface.frag, output 0).
@@ -210,53 +234,62 @@ struct FluidRenderer::Impl {
     gl.Enable(GL_BLEND);
     gl.BlendFunc(GL_ONE, GL_ONE);
     gl.BlendEquation(GL_MIN);
-    setSphereUniforms(projection, radius);
+    setSphereUniforms(projection, radius, SecondOutput::Chords);
     drawSpheres(static_cast<GLsizei>(visible.surface_count));
     gl.Disable(GL_BLEND);
   }
 
-  // Thickness target cleared to 0, then ADD-blended (output 1 routed to the target).
-  void drawThickness(const Eigen::Matrix4f& projection, float radius) {
-    thickness->bindForDrawing();
+  // The second output alone (output 1 routed to the target's only attachment).
+  void drawSecondOutput(const Eigen::Matrix4f& projection, float radius, SecondOutput second) {
+    RenderTarget& target = secondTarget(second);
+    target.bindForDrawing();
     const GLenum outputs[] = {GL_NONE, GL_COLOR_ATTACHMENT0};
     gl.DrawBuffers(2, outputs);
     gl.Disable(GL_SCISSOR_TEST);
-    gl.ClearBufferfv(GL_COLOR, 1, kClearThickness);
+    gl.ClearBufferfv(GL_COLOR, 1, kClearZero);
     gl.Enable(GL_BLEND);
     gl.BlendFunc(GL_ONE, GL_ONE);
-    gl.BlendEquation(GL_FUNC_ADD);
-    setSphereUniforms(projection, radius);
-    drawSpheres(static_cast<GLsizei>(visible.view_positions.size()));
+    gl.BlendEquation(secondEquation(second));
+    setSphereUniforms(projection, radius, second);
+    drawSpheres(secondCount(second));
     gl.Disable(GL_BLEND);
   }
 
-  // Both at once: one draw of every visible particle (GL 4.0 blend equation per target).
-  void drawSphereDepthAndThickness(const Eigen::Matrix4f& projection, float radius) {
+  // Both outputs from one draw (GL 4.0: a blend equation per target). With FarDepth both
+  // need only the surface particles; with Chords every particle is drawn.
+  void drawSphereDepthAndSecond(const Eigen::Matrix4f& projection, float radius,
+                                SecondOutput second) {
+    RenderTarget& target = secondTarget(second);
     gl.BindFramebuffer(GL_FRAMEBUFFER, sphere_framebuffer);
-    if (sphere_framebuffer_width != raw_depth->width() ||
-        sphere_framebuffer_height != raw_depth->height()) {
-      gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                              raw_depth->colorTexture(), 0);
-      gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
-                              thickness->colorTexture(), 0);
-      const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-      gl.DrawBuffers(2, outputs);
-      if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw std::runtime_error("render target 'sphere depth + thickness' is incomplete");
-      sphere_framebuffer_width = raw_depth->width();
-      sphere_framebuffer_height = raw_depth->height();
-    }
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                            raw_depth->colorTexture(), 0);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
+                            target.colorTexture(), 0);
+    const GLenum outputs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl.DrawBuffers(2, outputs);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("render target 'sphere depth + thickness' is incomplete");
     gl.Viewport(0, 0, raw_depth->width(), raw_depth->height());
     gl.Disable(GL_SCISSOR_TEST);
     gl.ClearBufferfv(GL_COLOR, 0, kClearDepth);
-    gl.ClearBufferfv(GL_COLOR, 1, kClearThickness);
+    gl.ClearBufferfv(GL_COLOR, 1, kClearZero);
     gl.Enable(GL_BLEND);
     gl.BlendFunc(GL_ONE, GL_ONE);
     gl.BlendEquationi(0, GL_MIN);
-    gl.BlendEquationi(1, GL_FUNC_ADD);
-    setSphereUniforms(projection, radius);
-    drawSpheres(static_cast<GLsizei>(visible.view_positions.size()));
+    gl.BlendEquationi(1, secondEquation(second));
+    setSphereUniforms(projection, radius, second);
+    drawSpheres(secondCount(second));
     gl.Disable(GL_BLEND);
+  }
+
+  // thickness = (far - near) * packing, where the surface-only sphere pass left the
+  // nearest front face in raw_depth and the farthest back face in far_depth.
+  void resolveThicknessFromDepths() {
+    beginScreenPass(*thickness);
+    thickness_program.use();
+    raw_depth->bindColorTexture(kUnitDepth);
+    far_depth->bindColorTexture(kUnitNormals);
+    drawFullscreen();
   }
 
   // (depth, coverage) pairs from the sphere depth, with the gaps closed (close_gaps.frag,
@@ -506,7 +539,10 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
     r.prefiltered_depth->resize(w, h);
     r.smoothed_depth->resize(w, h);
   }
-  if (need_thickness) r.thickness->resize(w, h);
+  if (need_thickness) {
+    r.thickness->resize(w, h);
+    r.far_depth->resize(w, h);
+  }
   if (need_normals) r.normals->resize(w, h);
   if (need_shading) {
     r.background->resize(w, h);
@@ -517,8 +553,12 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
                          options_.surface_particles_only, options_.interior_neighbor_count,
                          r.visible);
   out.particles_in_view = r.visible.view_positions.size();
+  // Thickness from every particle's chord, or, when only surface particles are to be drawn,
+  // from the front and back faces of the surface (Impl::SecondOutput).
+  const bool split = r.visible.surface_count < r.visible.view_positions.size();
+  const auto second = split ? Impl::SecondOutput::FarDepth : Impl::SecondOutput::Chords;
   const bool together = need_thickness && r.gl.BlendEquationi;
-  out.particles_in_depth = together ? out.particles_in_view : r.visible.surface_count;
+  out.particles_in_depth = together && !split ? out.particles_in_view : r.visible.surface_count;
   r.uploadParticles();
   lap(out.timings.cull_upload);
 
@@ -527,16 +567,15 @@ void FluidRenderer::render(const std::vector<Eigen::Vector3f>& positions, float 
   const Eigen::Vector2f principal(0.5f * w, 0.5f * h);  // window coordinates
 
   if (together) {
-    r.drawSphereDepthAndThickness(projection, radius);
+    r.drawSphereDepthAndSecond(projection, radius, second);
     lap(out.timings.depth);
   } else {
     r.drawSphereDepth(projection, radius);
     lap(out.timings.depth);
-    if (need_thickness) {
-      r.drawThickness(projection, radius);
-      lap(out.timings.thickness);
-    }
+    if (need_thickness) r.drawSecondOutput(projection, radius, second);
   }
+  if (need_thickness && split) r.resolveThicknessFromDepths();
+  if (need_thickness) lap(out.timings.thickness);
   const bool smooth = options_.filter != DepthFilter::None;
   r.resolveDepth(smooth ? options_.gap_closing_in_radii : 0.0f, focal, radius);
   const RenderTarget* surface_depth = r.closed_depth.get();

@@ -6,10 +6,11 @@
 //                    [--height H] [--filter narrow|bilateral|none] [--sigma RADII]
 //                    [--counts 20000,80000] [--shaders DIR] [--png DIR]
 //
-// Each scene is measured twice: image + depth (what the node renders when both topics have
-// subscribers), and depth alone with only the surface particles drawn (fewer than 24
-// neighbours within h = 2 spacings, counted here the way the node has them from the
-// solver; inside the block a particle has about 30).
+// Each scene is measured three ways: image + depth (what the node renders when both topics
+// have subscribers) drawing every particle; the same drawing only the surface particles
+// (fewer than 24 neighbours within h = 2 spacings, counted here the way the node has them
+// from the solver; inside the block a particle has about 30); and depth alone, surface
+// particles only.
 
 #include <algorithm>
 #include <cmath>
@@ -145,7 +146,7 @@ int main(int argc, char** argv) {
     camera.width = o.width;
     camera.height = o.height;
     // Looking down at the block from a corner of the container, as a user would set it up;
-    // the 20k block fills about a fifth of the image, the 80k one about two fifths.
+    // the 20k block covers about a tenth of the image, the 80k one about a quarter.
     camera.camera_to_world =
         pbf::lookAt(Eigen::Vector3f(0.95f, -0.45f, 0.5f), Eigen::Vector3f(0.3f, 0.2f, 0.08f));
     const pbf::RenderRequest image_and_depth{true, true, false, false};
@@ -153,12 +154,13 @@ int main(int argc, char** argv) {
 
     std::printf("%dx%d, filter %s, %d frames after %d warm-up, ms per pass (mean / median)\n",
                 o.width, o.height, o.filter.c_str(), o.frames, o.warmup);
-    std::printf("%9s %-12s %9s %13s %13s %13s %13s %13s %13s %13s %13s\n", "particles",
+    std::printf("%9s %-13s %9s %13s %13s %13s %13s %13s %13s %13s %13s\n", "particles",
                 "request", "in depth", "cull+upload", "depth", "thickness", "filter",
                 "normals", "composite", "readback", "total");
-    for (int run = 0; run < 2 * static_cast<int>(o.counts.size()); ++run) {
-      const int count = o.counts[run / 2];
-      const bool surface_only = run % 2 == 1;
+    for (int run = 0; run < 3 * static_cast<int>(o.counts.size()); ++run) {
+      const int count = o.counts[run / 3];
+      const bool surface_only = run % 3 != 0;
+      const bool with_image = run % 3 != 2;
       const std::vector<Eigen::Vector3f> particles = damBreakBlock(count, spacing);
       const std::vector<std::uint32_t> counts =
           surface_only ? neighborCounts(particles, 2.0f * spacing) : std::vector<std::uint32_t>{};
@@ -168,7 +170,7 @@ int main(int argc, char** argv) {
       pbf::RenderOutput out;
       std::vector<double> t[8];
       for (int frame = 0; frame < o.warmup + o.frames; ++frame) {
-        renderer.render(particles, radius, camera, surface_only ? depth_only : image_and_depth,
+        renderer.render(particles, radius, camera, with_image ? image_and_depth : depth_only,
                         out, surface_only ? &counts : nullptr);
         if (frame < o.warmup) continue;
         const pbf::RenderTimings& s = out.timings;
@@ -176,12 +178,13 @@ int main(int argc, char** argv) {
                                   s.normals,     s.composite, s.readback,  s.total};
         for (int i = 0; i < 8; ++i) t[i].push_back(values[i]);
       }
-      std::printf("%9d %-12s %9zu", count, surface_only ? "depth,surf." : "image+depth",
-                  out.particles_in_depth);
+      const char* label = !surface_only ? "image+depth" : with_image ? "image+depth,s" : "depth,s";
+      std::printf("%9d %-13s %9zu", count, label, out.particles_in_depth);
       for (const auto& series : t) std::printf("  %5.1f / %5.1f", mean(series), median(series));
       std::printf("\n");
-      if (!o.png_dir.empty() && !surface_only) {
-        const std::string stem = o.png_dir + "/bench_" + std::to_string(count) + "_" + o.filter;
+      if (!o.png_dir.empty() && with_image) {
+        const std::string stem = o.png_dir + "/bench_" + std::to_string(count) + "_" + o.filter +
+                                 (surface_only ? "_surface" : "");
         pbf::writePng(stem + "_image.png", out.width, out.height, 4, out.rgba);
         pbf::writePng(stem + "_depth.png", out.width, out.height, 4, pbf::depthToRgba(out.depth));
       }

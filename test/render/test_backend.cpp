@@ -202,6 +202,7 @@ TEST_F(RendererApi, SurfaceOnlyDrawsFewerParticlesInTheDepthPass) {
   renderer_.render(particles, 0.01f, smallCamera(), depth_only, all, &counts);
   std::printf("depth pass: %zu of %zu particles when surface only\n",
               surface.particles_in_depth, surface.particles_in_view);
+  const std::size_t all_surface_count = surface.particles_in_depth;
   EXPECT_LT(surface.particles_in_depth, all.particles_in_depth * 7 / 10);
   EXPECT_EQ(surface.particles_in_view, all.particles_in_view);
   // Interior particles are mostly hidden: the depth image hardly changes (they show only
@@ -213,6 +214,22 @@ TEST_F(RendererApi, SurfaceOnlyDrawsFewerParticlesInTheDepthPass) {
     if (a != b || (a && std::abs(all.depth[i] - surface.depth[i]) > 0.2f * 0.01f)) ++differing;
   }
   EXPECT_LT(differing, fluid / 50);
+
+  // With an image, thickness comes from the surface's front and back faces instead of
+  // every chord; in pi/6 units it must tell the same story (mean within 35 %).
+  renderer_.setOptions(options);
+  renderer_.render(particles, 0.01f, smallCamera(), pbf_test::everything(), surface, &counts);
+  renderer_.setOptions(pbf::RenderOptions{});
+  renderer_.render(particles, 0.01f, smallCamera(), pbf_test::everything(), all, &counts);
+  EXPECT_EQ(surface.particles_in_depth, all_surface_count);
+  double sum_all = 0, sum_surface = 0;
+  for (std::size_t i = 0; i < all.thickness.size(); ++i) {
+    sum_all += all.thickness[i];
+    sum_surface += surface.thickness[i];
+  }
+  std::printf("mean thickness: every chord %.4f m, surface faces %.4f m\n",
+              sum_all / all.thickness.size(), sum_surface / surface.thickness.size());
+  EXPECT_NEAR(sum_surface / sum_all, 1.0, 0.35);
 
   std::vector<std::uint32_t> wrong_size(3, 0);
   renderer_.setOptions(options);

@@ -36,12 +36,11 @@ struct RenderOptions {
   float bilateral_depth_sigma_in_radii = 2.0f;
 
   // --- what is drawn ---
-  // Draw only particles with fewer than interior_neighbor_count neighbours in the depth
-  // pass (needs the neighbour counts passed to render()). The thickness pass always uses
-  // every visible particle, since interior particles are what make water thick; so this
-  // saves work when the depth pass runs alone: depth-only requests, or a GL 3.3 context.
-  // (With GL >= 4.0 a shaded image draws every particle once, for depth and thickness
-  // together, which is cheaper than two passes.)
+  // Draw only the particles with fewer than interior_neighbor_count neighbours (needs the
+  // neighbour counts passed to render()): the hidden interior costs nothing. Thickness
+  // then comes from the path between the front and back faces of the surface instead of
+  // every particle's chord (see shaders/thickness_from_depths.frag). In a 20k-particle
+  // block about a fifth of the particles are surface particles.
   bool surface_particles_only = false;
   std::uint32_t interior_neighbor_count = 24;
 

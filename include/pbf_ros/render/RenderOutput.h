@@ -13,7 +13,8 @@ struct RenderRequest {
   bool depth = true;       // smoothed depth, metres along the optical axis, NaN = no fluid
   bool thickness = false;  // summed chords of the particle spheres along each pixel's ray
                            // (m, 0 = none): about half the fluid's thickness, since
-                           // touching spheres fill ~52 % of a lattice
+                           // touching spheres fill ~52 % of a lattice. With surface
+                           // particles only: pi/6 * (back face - front face depth).
   bool normals = false;    // surface normals in the optical camera frame (0 = none)
 
   bool any() const { return image || depth || thickness || normals; }
