@@ -26,8 +26,10 @@ constexpr int kFilterOffsetRadius = 8;
 constexpr float kPrefilterSigmaPixels = 1.2f;
 constexpr int kMaxFilterOffsets = 128;  // MAX_OFFSETS in filter_kernel.glsl
 
-// Texture units, fixed per program at set-up.
-constexpr int kUnitDepth = 0, kUnitNormals = 1, kUnitThickness = 2, kUnitCenters = 3,
+// Texture units, bound to each program's samplers once at set-up: a pass reads its main
+// input (depth of some stage) on unit 0 and a second one (normals, coverage, far depth) on
+// unit 1.
+constexpr int kUnitInput = 0, kUnitSecondInput = 1, kUnitThickness = 2, kUnitCenters = 3,
               kUnitBackground = 4;
 
 constexpr GLfloat kClearDepth[4] = {1e30f, 0, 0, 0};  // "no fluid" for MIN blending
@@ -122,23 +124,23 @@ struct FluidRenderer::Impl {
       gl.Uniform1i(program->uniform("offset_count"), offset_count);
       gl.Uniform1f(program->uniform("offset_units_max"),
                    static_cast<float>(kFilterOffsetRadius));
-      gl.Uniform1i(program->uniform("depth_texture"), kUnitDepth);
+      gl.Uniform1i(program->uniform("depth_texture"), kUnitInput);
     }
     normals_program.use();
-    gl.Uniform1i(normals_program.uniform("depth_texture"), kUnitDepth);
+    gl.Uniform1i(normals_program.uniform("depth_texture"), kUnitInput);
     close_gaps_program.use();
-    gl.Uniform1i(close_gaps_program.uniform("depth_texture"), kUnitDepth);
-    gl.Uniform1i(close_gaps_program.uniform("coverage_texture"), kUnitNormals);
+    gl.Uniform1i(close_gaps_program.uniform("depth_texture"), kUnitInput);
+    gl.Uniform1i(close_gaps_program.uniform("coverage_texture"), kUnitSecondInput);
     thickness_program.use();
-    gl.Uniform1i(thickness_program.uniform("near_texture"), kUnitDepth);
-    gl.Uniform1i(thickness_program.uniform("far_texture"), kUnitNormals);
+    gl.Uniform1i(thickness_program.uniform("near_texture"), kUnitInput);
+    gl.Uniform1i(thickness_program.uniform("far_texture"), kUnitSecondInput);
     prefilter_program.use();
-    gl.Uniform1i(prefilter_program.uniform("depth_texture"), kUnitDepth);
-    gl.Uniform1i(prefilter_program.uniform("coverage_texture"), kUnitNormals);
+    gl.Uniform1i(prefilter_program.uniform("depth_texture"), kUnitInput);
+    gl.Uniform1i(prefilter_program.uniform("coverage_texture"), kUnitSecondInput);
     gl.Uniform1f(prefilter_program.uniform("sigma_pixels"), kPrefilterSigmaPixels);
     composite_program.use();
-    gl.Uniform1i(composite_program.uniform("depth_texture"), kUnitDepth);
-    gl.Uniform1i(composite_program.uniform("normal_texture"), kUnitNormals);
+    gl.Uniform1i(composite_program.uniform("depth_texture"), kUnitInput);
+    gl.Uniform1i(composite_program.uniform("normal_texture"), kUnitSecondInput);
     gl.Uniform1i(composite_program.uniform("thickness_texture"), kUnitThickness);
     gl.Uniform1i(composite_program.uniform("background_texture"), kUnitBackground);
     gl.UseProgram(0);
@@ -287,8 +289,8 @@ struct FluidRenderer::Impl {
   void resolveThicknessFromDepths() {
     beginScreenPass(*thickness);
     thickness_program.use();
-    raw_depth->bindColorTexture(kUnitDepth);
-    far_depth->bindColorTexture(kUnitNormals);
+    raw_depth->bindColorTexture(kUnitInput);
+    far_depth->bindColorTexture(kUnitSecondInput);
     drawFullscreen();
   }
 
@@ -313,15 +315,15 @@ struct FluidRenderer::Impl {
       beginScreenPass(*gap_half, kClearDepth);  // read beyond the rectangle: no fluid
       gl.Uniform2i(close_gaps_program.uniform("direction"), 1, 0);
       gl.Uniform1i(close_gaps_program.uniform("final_pass"), 0);
-      raw_depth->bindColorTexture(kUnitDepth);
+      raw_depth->bindColorTexture(kUnitInput);
       drawFullscreen();
       source = gap_half.get();
     }
     beginScreenPass(*closed_depth);
     gl.Uniform2i(close_gaps_program.uniform("direction"), 0, 1);
     gl.Uniform1i(close_gaps_program.uniform("final_pass"), 1);
-    source->bindColorTexture(kUnitDepth);
-    raw_depth->bindColorTexture(kUnitNormals);  // coverage
+    source->bindColorTexture(kUnitInput);
+    raw_depth->bindColorTexture(kUnitSecondInput);  // coverage
     drawFullscreen();
   }
 
@@ -332,13 +334,13 @@ struct FluidRenderer::Impl {
     beginScreenPass(*prefilter_half);
     gl.Uniform2i(prefilter_program.uniform("direction"), 1, 0);
     gl.Uniform1i(prefilter_program.uniform("final_pass"), 0);
-    closed_depth->bindColorTexture(kUnitDepth);
+    closed_depth->bindColorTexture(kUnitInput);
     drawFullscreen();
     beginScreenPass(*prefiltered_depth);
     gl.Uniform2i(prefilter_program.uniform("direction"), 0, 1);
     gl.Uniform1i(prefilter_program.uniform("final_pass"), 1);
-    prefilter_half->bindColorTexture(kUnitDepth);
-    closed_depth->bindColorTexture(kUnitNormals);  // the coverage to keep
+    prefilter_half->bindColorTexture(kUnitInput);
+    closed_depth->bindColorTexture(kUnitSecondInput);  // the coverage to keep
     drawFullscreen();
 
     const bool narrow = o.filter == DepthFilter::NarrowRange;
@@ -355,7 +357,7 @@ struct FluidRenderer::Impl {
     } else {
       gl.Uniform1f(program.uniform("depth_sigma"), o.bilateral_depth_sigma_in_radii * radius);
     }
-    prefiltered_depth->bindColorTexture(kUnitDepth);
+    prefiltered_depth->bindColorTexture(kUnitInput);
     drawFullscreen();
   }
 
@@ -365,7 +367,7 @@ struct FluidRenderer::Impl {
     normals_program.use();
     gl.Uniform1f(normals_program.uniform("focal_pixels"), focal);
     gl.Uniform2f(normals_program.uniform("principal_point"), principal.x(), principal.y());
-    surface_depth.bindColorTexture(kUnitDepth);
+    surface_depth.bindColorTexture(kUnitInput);
     drawFullscreen();
   }
 
@@ -420,8 +422,8 @@ struct FluidRenderer::Impl {
     gl.Uniform1f(p.uniform("specular_strength"), o.specular_strength);
     gl.Uniform1f(p.uniform("specular_exponent"), o.specular_exponent);
     gl.Uniform1f(p.uniform("radius"), radius);
-    surface_depth.bindColorTexture(kUnitDepth);
-    normals->bindColorTexture(kUnitNormals);
+    surface_depth.bindColorTexture(kUnitInput);
+    normals->bindColorTexture(kUnitSecondInput);
     thickness->bindColorTexture(kUnitThickness);
     thickness->generateMipmaps();
     background->bindColorTexture(kUnitBackground);
