@@ -57,11 +57,15 @@ def main():
     broadcaster = tf2_ros.TransformBroadcaster()
     rate = rospy.Rate(rate_hz)
     start = None
+    last_stamp = None
     while not rospy.is_shutdown():
         now = rospy.Time.now()
-        if now.is_zero():  # sim time not started yet
-            rospy.sleep(0.01)
+        # Sim time not started yet, or not advanced since the last publish (the simulation
+        # runs slower than real time): tf2 rejects a repeated stamp, so wait for a new one.
+        if now.is_zero() or now == last_stamp:
+            rospy.sleep(0.005)
             continue
+        last_stamp = now
         if start is None:
             start = now
         t = (now - start).to_sec()
