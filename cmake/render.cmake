@@ -28,6 +28,11 @@ add_library(pbf_render
   ${PBF_RENDER_ROOT}/src/render/FilterOffsets.cpp
   ${PBF_RENDER_ROOT}/src/render/ParticleCulling.cpp
   ${PBF_RENDER_ROOT}/src/render/RenderCamera.cpp
+  ${PBF_RENDER_ROOT}/src/render/RenderContext.cpp
+  ${PBF_RENDER_ROOT}/src/render/SpherePass.cpp
+  ${PBF_RENDER_ROOT}/src/render/DepthSmoothing.cpp
+  ${PBF_RENDER_ROOT}/src/render/Shading.cpp
+  ${PBF_RENDER_ROOT}/src/render/Readback.cpp
   ${PBF_RENDER_ROOT}/src/render/FluidRenderer.cpp
   ${PBF_RENDER_ROOT}/src/render/ImageWriter.cpp)
 target_include_directories(pbf_render PUBLIC ${PBF_RENDER_ROOT}/include)
