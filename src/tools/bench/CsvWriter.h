@@ -28,7 +28,7 @@ class CsvWriter {
       if (k) line << ',';
       if (const auto* d = std::get_if<double>(&cells[k])) line << *d;
       else if (const auto* i = std::get_if<long long>(&cells[k])) line << *i;
-      else line << std::get<std::string>(cells[k]);
+      else line << quoted(std::get<std::string>(cells[k]));
     }
     out_ << line.str() << '\n';
     out_.flush();
@@ -36,6 +36,14 @@ class CsvWriter {
   }
 
  private:
+  // RFC 4180: words with a comma, quote or newline go in quotes, quotes doubled.
+  static std::string quoted(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+  }
+
   std::string path_;
   std::ofstream out_;
 };
