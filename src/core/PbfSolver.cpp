@@ -366,6 +366,10 @@ void PbfSolver::computeLambdas(float& avg_error) {
   const float tiny2 = kCoincident * h2;
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
+  // The delta-p pass of this iteration sees the same positions: it reuses each pair's
+  // gradient factor instead of another sqrt and division.
+  pair_gradient_.resize(grid_->indices().size());
+  float* G = pair_gradient_.data();
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -382,6 +386,7 @@ void PbfSolver::computeLambdas(float& avg_error) {
       const float rlen = std::sqrt(r2);
       const float dl = std::max(h - rlen, 0.0f);
       const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
+      G[e] = g;
       coincident += r2 <= tiny2 ? 1 : 0;
       gx += g * dx;
       gy += g * dy;
@@ -424,12 +429,13 @@ void PbfSolver::computeDeltas() {
   const std::uint32_t* nbr = grid_->indices().data();
   const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
   const float* L = lambda_.data();
+  const float* G = pair_gradient_.data();  // (m / rho0) grad W / r, from the lambda pass
   const float grad_scale = params_.particleMass() / params_.rest_density;
   const bool scorr = params_.scorr_k > 0.0f;
-  const float h = k.h, h2 = k.h2, spiky = k.spiky_grad_coef, tiny2 = kCoincident * h2;
+  const float h2 = k.h2, tiny2 = kCoincident * h2;
   // s_corr = -k (W(r) / W(dq))^n (Macklin & Mueller eq 13; the seed's eq 11 lost the
   // parentheses). With k = 0 the loop without it runs: no cost.
-  const float dq = params_.scorr_delta_q * h;
+  const float dq = params_.scorr_delta_q * k.h;
   const float poly6_rel = scorr ? k.poly6_coef / k.poly6(dq * dq) : 0.0f;
   const float scorr_k = params_.scorr_k, scorr_n = params_.scorr_n;
   const bool scorr_n4 = scorr_n == 4.0f;
@@ -447,11 +453,8 @@ void PbfSolver::computeDeltas() {
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
         const std::uint32_t j = nbr[e];
         const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
-        const float r2 = dx * dx + dy * dy + dz * dz;
-        const float rlen = std::sqrt(r2);
-        const float dl = std::max(h - rlen, 0.0f);
-        const float g = r2 > tiny2 ? (li + L[j]) * spiky * dl * dl / rlen : 0.0f;
-        coincident += r2 <= tiny2 ? 1 : 0;
+        const float g = (li + L[j]) * G[e];
+        coincident += dx * dx + dy * dy + dz * dz <= tiny2 ? 1 : 0;
         dx_sum += g * dx;
         dy_sum += g * dy;
         dz_sum += g * dz;
@@ -465,9 +468,7 @@ void PbfSolver::computeDeltas() {
         const float w = std::max(h2 - r2, 0.0f);
         const float rel = poly6_rel * w * w * w;
         const float s = scorr_n4 ? (rel * rel) * (rel * rel) : std::pow(rel, scorr_n);
-        const float rlen = std::sqrt(r2);
-        const float dl = std::max(h - rlen, 0.0f);
-        const float g = r2 > tiny2 ? (li + L[j] - scorr_k * s) * spiky * dl * dl / rlen : 0.0f;
+        const float g = (li + L[j] - scorr_k * s) * G[e];
         coincident += r2 <= tiny2 ? 1 : 0;
         dx_sum += g * dx;
         dy_sum += g * dy;
@@ -486,8 +487,9 @@ void PbfSolver::computeDeltas() {
         }
         dp += s * pairGradient(i, j);
       }
+      dp *= grad_scale;
     }
-    delta_[i] = grad_scale * dp;
+    delta_[i] = dp;
     if (walls && li != 0.0f) {  // lambda_i times the solids' part of grad_i C_i
       float fraction = 0.0f;
       Eigen::Vector3f gw = Eigen::Vector3f::Zero();

@@ -114,6 +114,7 @@ class PbfSolver {
   std::vector<Eigen::Vector3f> vorticity_;
   std::vector<Eigen::Vector3f> build_position_;  // positions at the last list build (skin)
   std::vector<float> lambda_;
+  std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass
   std::vector<float> density_;
   std::vector<std::uint16_t> neighbor_count_;
   // Backups to reject a non-finite step.
