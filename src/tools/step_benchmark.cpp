@@ -1,6 +1,7 @@
 // pbf_step_benchmark: Google Benchmark of one solver step on the dam break, the figures of
-// the README's performance table. 4 fixed iterations, fixed dt, 1 and 2 threads.
-//   pbf_step_benchmark --benchmark_repetitions=3
+// the README's performance table. 4 fixed iterations, fixed dt, 1 and 2 threads; and the
+// cost of boundary handling (clamp only / wall density / with obstacles).
+//   pbf_step_benchmark --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // Each run first simulates 0.25 s (warm-up into a realistic, splashing state), then times
 // steps; per-stage times are reported as counters (ms per step).
 
@@ -12,6 +13,7 @@
 
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
+#include "pbf_ros/core/SceneSetup.h"
 
 #ifndef PBF_SOURCE_DIR
 #define PBF_SOURCE_DIR "."
@@ -28,19 +30,32 @@ float spacingFor(int kilo_particles) {
   }
 }
 
-std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles) {
+// Boundary variants for the cost of boundary handling: the seed's clamp only, wall
+// density (the default), and wall density plus two obstacles in the flow.
+enum Boundary { kClampOnly = 0, kWallDensity = 1, kWallDensityAndObstacles = 2 };
+
+std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles, int boundary = kWallDensity) {
   pbf::Scene scene = pbf::loadSceneFile(std::string(PBF_SOURCE_DIR) + "/config/scenes/dam_break.yaml");
+  scene.solver.wall_density = boundary != kClampOnly;
+  if (boundary == kWallDensityAndObstacles) {
+    pbf::Obstacle pillar;
+    pillar.shape = pbf::Obstacle::Shape::Capsule;
+    pillar.radius = 0.05f;
+    pillar.half_length = 0.3f;
+    pillar.pose.translation() = Eigen::Vector3f(0.8f, 0.25f, 0.3f);
+    pbf::Obstacle block;
+    block.shape = pbf::Obstacle::Shape::Box;
+    block.half_extents = Eigen::Vector3f(0.05f, 0.1f, 0.05f);
+    block.pose.translation() = Eigen::Vector3f(1.2f, 0.25f, 0.05f);
+    scene.obstacles = {pillar, block};
+  }
   scene.solver.particle_spacing = spacingFor(kilo_particles);
   scene.solver.adaptive_time_step = false;
   scene.solver.time_step = 1.0f / 400.0f;
   scene.solver.min_iterations = scene.solver.max_iterations = 4;
   scene.solver.density_tolerance = 0.0f;
-  std::vector<Eigen::Vector3f> x, v;
-  scene.initialParticles(x, v);
   auto solver = std::make_unique<pbf::PbfSolver>();
-  solver->setParams(scene.solver);
-  solver->setContainer(scene.container);
-  solver->setParticles(x, v);
+  pbf::setUpSolver(scene, *solver);
   while (solver->time() < 0.25) solver->step();
   return solver;
 }
@@ -48,8 +63,9 @@ std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles) {
 void BM_DamBreakStep(benchmark::State& state) {
   const int kilo = static_cast<int>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
+  const int boundary = static_cast<int>(state.range(2));
   omp_set_num_threads(threads);
-  auto solver = makeWarmSolver(kilo);
+  auto solver = makeWarmSolver(kilo, boundary);
   pbf::StageTimes sum;
   for (auto _ : state) {
     const pbf::StepStats st = solver->step();
@@ -71,9 +87,19 @@ void BM_DamBreakStep(benchmark::State& state) {
 
 }  // namespace
 
+// Scaling with particle count and threads (default boundaries).
 BENCHMARK(BM_DamBreakStep)
-    ->ArgNames({"kparticles", "threads"})
-    ->ArgsProduct({{20, 80, 320}, {1, 2}})
+    ->ArgNames({"kparticles", "threads", "boundary"})
+    ->ArgsProduct({{20, 80, 320}, {1, 2}, {kWallDensity}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(1.0);
+
+// Cost of boundary handling: clamp only (0), wall density (1), plus obstacles (2).
+BENCHMARK(BM_DamBreakStep)
+    ->Name("BM_BoundaryCost")
+    ->ArgNames({"kparticles", "threads", "boundary"})
+    ->ArgsProduct({{20}, {2}, {kClampOnly, kWallDensity, kWallDensityAndObstacles}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);
