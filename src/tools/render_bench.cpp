@@ -12,6 +12,8 @@
 // from the solver; inside the block a particle has about 30); and depth alone, surface
 // particles only.
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -114,6 +116,14 @@ std::vector<std::uint32_t> neighborCounts(const std::vector<Eigen::Vector3f>& po
   return counts;
 }
 
+// CPU time of the whole process (every llvmpipe thread included), in milliseconds.
+double processCpuMilliseconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto ms = [](const timeval& t) { return t.tv_sec * 1e3 + t.tv_usec * 1e-3; };
+  return ms(usage.ru_utime) + ms(usage.ru_stime);
+}
+
 double mean(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s += x;
@@ -154,9 +164,9 @@ int main(int argc, char** argv) {
 
     std::printf("%dx%d, filter %s, %d frames after %d warm-up, ms per pass (mean / median)\n",
                 o.width, o.height, o.filter.c_str(), o.frames, o.warmup);
-    std::printf("%9s %-13s %9s %13s %13s %13s %13s %13s %13s %13s %13s\n", "particles",
+    std::printf("%9s %-13s %9s %13s %13s %13s %13s %13s %13s %13s %13s %10s\n", "particles",
                 "request", "in depth", "cull+upload", "depth", "thickness", "filter",
-                "normals", "composite", "readback", "total");
+                "normals", "composite", "readback", "total", "cpu/frame");
     for (int run = 0; run < 3 * static_cast<int>(o.counts.size()); ++run) {
       const int count = o.counts[run / 3];
       const bool surface_only = run % 3 != 0;
@@ -169,7 +179,9 @@ int main(int argc, char** argv) {
       renderer.setOptions(run_options);
       pbf::RenderOutput out;
       std::vector<double> t[8];
+      double cpu_start = 0;
       for (int frame = 0; frame < o.warmup + o.frames; ++frame) {
+        if (frame == o.warmup) cpu_start = processCpuMilliseconds();
         renderer.render(particles, radius, camera, with_image ? image_and_depth : depth_only,
                         out, surface_only ? &counts : nullptr);
         if (frame < o.warmup) continue;
@@ -181,7 +193,9 @@ int main(int argc, char** argv) {
       const char* label = !surface_only ? "image+depth" : with_image ? "image+depth,s" : "depth,s";
       std::printf("%9d %-13s %9zu", count, label, out.particles_in_depth);
       for (const auto& series : t) std::printf("  %5.1f / %5.1f", mean(series), median(series));
-      std::printf("\n");
+      // Busy time of all threads per frame: on an idle 2-core machine a frame takes at
+      // least half of it, whatever else the machine is doing now.
+      std::printf("  %8.1f\n", (processCpuMilliseconds() - cpu_start) / o.frames);
       if (!o.png_dir.empty() && with_image) {
         const std::string stem = o.png_dir + "/bench_" + std::to_string(count) + "_" + o.filter +
                                  (surface_only ? "_surface" : "");
