@@ -197,8 +197,10 @@ TEST_F(RendererApi, SurfaceOnlyDrawsFewerParticlesInTheDepthPass) {
   // every particle once for depth and thickness together).
   const pbf::RenderRequest depth_only{false, true, false, false};
   pbf::RenderOutput all, surface;
+  pbf::RenderOptions every_particle;
+  every_particle.surface_particles_only = false;
   renderer_.render(particles, 0.01f, smallCamera(), depth_only, surface, &counts);
-  renderer_.setOptions(pbf::RenderOptions{});
+  renderer_.setOptions(every_particle);
   renderer_.render(particles, 0.01f, smallCamera(), depth_only, all, &counts);
   std::printf("depth pass: %zu of %zu particles when surface only\n",
               surface.particles_in_depth, surface.particles_in_view);
@@ -219,7 +221,7 @@ TEST_F(RendererApi, SurfaceOnlyDrawsFewerParticlesInTheDepthPass) {
   // every chord; in pi/6 units it must tell the same story (mean within 35 %).
   renderer_.setOptions(options);
   renderer_.render(particles, 0.01f, smallCamera(), pbf_test::everything(), surface, &counts);
-  renderer_.setOptions(pbf::RenderOptions{});
+  renderer_.setOptions(every_particle);
   renderer_.render(particles, 0.01f, smallCamera(), pbf_test::everything(), all, &counts);
   EXPECT_EQ(surface.particles_in_depth, all_surface_count);
   double sum_all = 0, sum_surface = 0;

@@ -36,12 +36,13 @@ struct RenderOptions {
   float bilateral_depth_sigma_in_radii = 2.0f;
 
   // --- what is drawn ---
-  // Draw only the particles with fewer than interior_neighbor_count neighbours (needs the
-  // neighbour counts passed to render()): the hidden interior costs nothing. Thickness
-  // then comes from the path between the front and back faces of the surface instead of
-  // every particle's chord (see shaders/thickness_from_depths.frag). In a 20k-particle
-  // block about a fifth of the particles are surface particles.
-  bool surface_particles_only = false;
+  // Draw only the particles with fewer than interior_neighbor_count neighbours: the hidden
+  // interior costs nothing. Takes effect only when render() is given neighbour counts
+  // (without them every particle is drawn). Thickness then comes from the path between
+  // the front and back faces of the surface instead of every particle's chord (see
+  // shaders/thickness_from_depths.frag). In a 20k-particle block about a fifth of the
+  // particles are surface particles, and a frame costs ~30 % less CPU.
+  bool surface_particles_only = true;
   std::uint32_t interior_neighbor_count = 24;
 
   // --- shading ---
