@@ -1,8 +1,10 @@
-# pbf_ros_node: the ROS layer (FluidNode and its plain conversion functions), and pbf_node.
+# pbf_ros_node: the ROS layer (FluidNode, the surface render thread and their plain
+# conversion functions), and pbf_node.
 # The only code that knows ROS; it translates between the graph and pbf_core.
 include_directories(${catkin_INCLUDE_DIRS})
 
 add_library(pbf_ros_node
+  src/ros/CameraInfoConversion.cpp
   src/ros/CloudConversion.cpp
   src/ros/DomainTransform.cpp
   src/ros/FluidDiagnostics.cpp
@@ -11,15 +13,19 @@ add_library(pbf_ros_node
   src/ros/FluidNodeServices.cpp
   src/ros/ParamsConversion.cpp
   src/ros/RealTimePacer.cpp
+  src/ros/RenderCameraParams.cpp
   src/ros/SceneMarkers.cpp
   src/ros/SceneLoading.cpp
   src/ros/SimulationLoop.cpp
   src/ros/SimulationTasks.cpp
   src/ros/SnapshotBuffer.cpp
   src/ros/StatsConversion.cpp
+  src/ros/SurfaceImageConversion.cpp
+  src/ros/SurfaceRenderThread.cpp
   src/ros/TfAttachments.cpp)
 target_include_directories(pbf_ros_node PUBLIC include ${CATKIN_DEVEL_PREFIX}/include)
-target_link_libraries(pbf_ros_node PUBLIC pbf_core ${catkin_LIBRARIES})
+# pbf_render brings its GL back-ends (OSMesa, EGL) but never libGL/libOpenGL.
+target_link_libraries(pbf_ros_node PUBLIC pbf_core pbf_render ${catkin_LIBRARIES})
 # The generated SimulationStats.h and FluidConfig.h must exist before we compile.
 add_dependencies(pbf_ros_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 

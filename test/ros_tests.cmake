@@ -1,13 +1,16 @@
 # ROS layer tests, run by ctest.
-#  - test_ros_units: GoogleTest, no master: the plain conversion / pacing / health functions.
+#  - test_ros_units: GoogleTest, no master: the plain conversion / pacing / health functions
+#    (and the render camera parameters, CameraInfo and surface image conversions).
 #  - rostest launch files: pbf_node on a small fluid (particle_spacing 0.05 -> ~1.3k
 #    particles) with Python test nodes, plus rostest's hztest for the cloud rate.
 find_package(rostest REQUIRED)
 
 catkin_add_gtest(test_ros_units
+  test/ros/test_camera_info_conversion.cpp
   test/ros/test_cloud_conversion.cpp
   test/ros/test_params_conversion.cpp
   test/ros/test_real_time_pacer.cpp
+  test/ros/test_render_camera_params.cpp
   test/ros/test_scene_markers.cpp
   test/ros/test_snapshot_buffer.cpp
   test/ros/test_stats_and_health.cpp)
@@ -21,3 +24,4 @@ add_rostest(test/particles_rate.test DEPENDENCIES pbf_node)
 add_rostest(test/node_control.test DEPENDENCIES pbf_node)
 add_rostest(test/sim_clock.test DEPENDENCIES pbf_node)
 add_rostest(test/attached_frames.test DEPENDENCIES pbf_node)
+add_rostest(test/surface_topics.test DEPENDENCIES pbf_node)

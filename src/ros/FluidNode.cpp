@@ -8,6 +8,7 @@
 #include <pbf_ros/SimulationStats.h>
 
 #include "pbf_ros/ros/ParamsConversion.h"
+#include "pbf_ros/ros/RenderCameraParams.h"
 #include "pbf_ros/ros/SceneLoading.h"
 
 namespace pbf_ros {
@@ -110,6 +111,8 @@ FluidConfig FluidNode::startupConfig(const pbf::Scene& scene) {
     }
     user_param_names_.insert(desc->name);
   }
+  // A camera position given at start-up means that camera, not the automatic one.
+  if (applyCameraOverride(user_param_names_, user_config_)) user_param_names_.insert("camera_auto");
 
   FluidConfig from_scene = user_config_;
   solverParamsToConfig(scene.solver, from_scene);
@@ -143,6 +146,22 @@ void FluidNode::startReconfigure(const FluidConfig& initial) {
   reconfigure_->updateConfig(initial);  // the scene and YAML values seed the server
   reconfigure_->setCallback(
       [this](FluidConfig& config, std::uint32_t level) { onReconfigure(config, level); });
+}
+
+void FluidNode::setRenderSettingsListener(RenderSettingsListener listener) {
+  // The reconfigure server holds this mutex while it calls onReconfigure.
+  boost::recursive_mutex::scoped_lock lock(reconfigure_mutex_);
+  render_listener_ = std::move(listener);
+  notifyRenderSettings();
+}
+
+void FluidNode::notifyRenderSettings() {
+  if (render_listener_) render_listener_(applied_config_, applied_scene_);
+}
+
+void FluidNode::sendStaticTransform(const geometry_msgs::TransformStamped& transform) {
+  std::lock_guard<std::mutex> lock(tf_static_mutex_);
+  tf_static_.sendTransform(transform);
 }
 
 void FluidNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {

@@ -6,6 +6,7 @@
 #include "pbf_ros/ros/FluidNode.h"
 #include "pbf_ros/ros/ParamsConversion.h"
 #include "pbf_ros/ros/ReconfigureLevels.h"
+#include "pbf_ros/ros/RenderCameraParams.h"
 #include "pbf_ros/ros/SceneLoading.h"
 
 namespace pbf_ros {
@@ -28,6 +29,8 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
   // across scene changes; everything else follows the scene.
   std::set<std::string> requested = changedParams(config, applied_config_);
   requested.erase("scene");
+  // Moving the camera by hand means that camera, not the automatic one.
+  if (applyCameraOverride(requested, config)) requested.insert("camera_auto");
   FluidConfig user_config = user_config_;
   overlayParams(config, requested, user_config);
   std::set<std::string> user_names = user_param_names_;
@@ -56,6 +59,14 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
   const std::uint32_t level = config.__level__(applied_config_);
   if (level == 0) {
     config = applied_config_;
+    return;
+  }
+  if ((level & ~level::kRender) == 0) {
+    // Rendering only: the render thread takes it; the solver and its thread are not involved.
+    applied_config_ = config;
+    user_config_ = user_config;
+    user_param_names_ = user_names;
+    notifyRenderSettings();
     return;
   }
   rebuild = rebuild || (level & level::kResolution);
@@ -123,6 +134,7 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
   applied_scene_.solver = params;
   user_config_ = user_config;
   user_param_names_ = user_names;
+  if (level & (level::kRender | level::kScene)) notifyRenderSettings();
 }
 
 }  // namespace pbf_ros

@@ -155,6 +155,9 @@ void FluidNode::publishStats() {
   context.nan_recoveries = nan_recoveries_;
   context.cloud_ms = cloud_ms_;
   context.cloud_skipped = cloud_skipped_;
+  context.render_skipped = !surface_status_.active.load();
+  context.render_ms = surface_status_.last_frame_ms.load();
+  context.render_frames = surface_status_.frames.load();
   stats_pub_.publish(toStatsMessage(last_stats_, context));
 }
 
@@ -201,7 +204,7 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
 void FluidNode::announceScene() {
   const ros::Time now = stamp();
   markers_pub_.publish(makeSceneMarkers(scene_, domain_frame_, now));
-  tf_static_.sendTransform(makeDomainTransform(scene_, world_frame_, domain_frame_, now));
+  sendStaticTransform(makeDomainTransform(scene_, world_frame_, domain_frame_, now));
 }
 
 void FluidNode::setRates(double publish_rate, double stats_rate) {

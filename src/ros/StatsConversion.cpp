@@ -30,8 +30,11 @@ SimulationStats toStatsMessage(const pbf::StepStats& stats, const StatsContext& 
   msg.time_other_ms = finiteOr0(stats.times.other_ms);
   msg.time_total_ms = finiteOr0(stats.times.total_ms);
   msg.time_cloud_ms = context.cloud_skipped ? 0.0 : finiteOr0(context.cloud_ms);
+  msg.time_render_ms = context.render_skipped ? 0.0 : finiteOr0(context.render_ms);
+  msg.surface_frames = context.render_frames;
   msg.skipped_stages = stats.skipped_stages;
   if (context.cloud_skipped) msg.skipped_stages.push_back("cloud");
+  if (context.render_skipped) msg.skipped_stages.push_back("surface");
   return msg;
 }
 

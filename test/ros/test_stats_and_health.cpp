@@ -52,6 +52,24 @@ TEST(StatsConversion, SkippedCloudIsListedAndCostsNothing) {
             m.skipped_stages.end());
 }
 
+TEST(StatsConversion, SurfaceWorkIsReportedAndSkippedSurfaceCostsNothing) {
+  pbf_ros::StatsContext c;
+  c.render_ms = 12.5;
+  c.render_frames = 7;
+  c.render_skipped = false;
+  pbf_ros::SimulationStats m = pbf_ros::toStatsMessage(pbf::StepStats(), c);
+  EXPECT_DOUBLE_EQ(m.time_render_ms, 12.5);
+  EXPECT_EQ(m.surface_frames, 7u);
+  EXPECT_EQ(std::find(m.skipped_stages.begin(), m.skipped_stages.end(), "surface"),
+            m.skipped_stages.end());
+  c.render_skipped = true;
+  m = pbf_ros::toStatsMessage(pbf::StepStats(), c);
+  EXPECT_DOUBLE_EQ(m.time_render_ms, 0.0);
+  EXPECT_EQ(m.surface_frames, 7u);  // the total stays
+  EXPECT_NE(std::find(m.skipped_stages.begin(), m.skipped_stages.end(), "surface"),
+            m.skipped_stages.end());
+}
+
 TEST(StatsConversion, NonFiniteNumbersNeverReachTheMessage) {
   pbf::StepStats s;
   s.max_speed = std::numeric_limits<double>::quiet_NaN();

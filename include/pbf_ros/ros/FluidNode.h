@@ -6,10 +6,14 @@
 //    requested real-time factor, publishes what is due and runs queued changes between steps;
 //  - ROS callbacks (reconfigure, services, diagnostics) run on an AsyncSpinner. They never
 //    touch the solver: they post tasks to the simulation thread and wait for the answer;
-//  - a future render thread takes particle snapshots from snapshots() (never blocks).
+//  - the surface render thread (SurfaceRenderThread, started by main) takes particle
+//    snapshots from snapshots() (never blocks), reports into surfaceStatus() (shown in
+//    ~stats), gets its parameters through setRenderSettingsListener() and sends its camera
+//    pose through sendStaticTransform().
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -33,6 +37,7 @@
 #include "pbf_ros/ros/RealTimePacer.h"
 #include "pbf_ros/ros/SimulationTasks.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
+#include "pbf_ros/ros/SurfaceRenderStatus.h"
 #include "pbf_ros/ros/TfAttachments.h"
 
 namespace pbf_ros {
@@ -49,6 +54,19 @@ class FluidNode {
 
   // Particle state for a render thread (see SnapshotBuffer).
   SnapshotBuffer& snapshots() { return snapshots_; }
+  // Written by the render thread, reported in ~stats.
+  SurfaceRenderStatus& surfaceStatus() { return surface_status_; }
+
+  // Called with the parameters in force and the scene (whose container frames the automatic
+  // camera): once right away, then after every reconfigure that changes a render parameter
+  // (level bit kRender) or the scene. Runs on the caller's / the spinner's thread; a render-
+  // only change never involves the simulation thread. Pass nullptr to stop the calls (do
+  // that before whatever the listener refers to goes away).
+  using RenderSettingsListener = std::function<void(const FluidConfig&, const pbf::Scene&)>;
+  void setRenderSettingsListener(RenderSettingsListener listener);
+
+  // Adds or replaces a transform on the node's one latched /tf_static publisher (any thread).
+  void sendStaticTransform(const geometry_msgs::TransformStamped& transform);
 
  private:
   using ReconfigureServer = dynamic_reconfigure::Server<FluidConfig>;
@@ -62,6 +80,7 @@ class FluidNode {
   // --- reconfigure (FluidNodeReconfigure.cpp); spinner thread ---
   void onReconfigure(FluidConfig& config, std::uint32_t level);
   void refuse(const std::string& what);
+  void notifyRenderSettings();  // calls the listener with applied_config_ / applied_scene_
 
   // --- services (FluidNodeServices.cpp); spinner thread ---
   bool onResetService(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
@@ -102,6 +121,7 @@ class FluidNode {
   // ROS interface.
   ros::Publisher particles_pub_, stats_pub_, markers_pub_, clock_pub_;
   ros::ServiceServer reset_srv_, pause_srv_, step_srv_;
+  std::mutex tf_static_mutex_;          // guards tf_static_ (sim thread, render settings)
   tf2_ros::StaticTransformBroadcaster tf_static_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_;
@@ -114,6 +134,7 @@ class FluidNode {
   pbf::Scene applied_scene_;           // the scene of applied_config_
   FluidConfig user_config_;            // parameters as the user set them (start-up, requests)
   std::set<std::string> user_param_names_;  // ... and which ones the user set
+  RenderSettingsListener render_listener_;
 
   // Simulation thread state (set up in the constructor before the thread starts).
   std::unique_ptr<pbf::PbfSolver> solver_;
@@ -132,6 +153,7 @@ class FluidNode {
   sensor_msgs::PointCloud2 cloud_;     // reused: its buffer is not reallocated every time
   SimulationTasks tasks_;
   SnapshotBuffer snapshots_;
+  SurfaceRenderStatus surface_status_;
   std::unique_ptr<TfAttachments> attachments_;  // moves solids attached to tf frames
   std::atomic<bool> running_{false};
   std::thread sim_thread_;

@@ -18,6 +18,7 @@ constexpr std::uint32_t kScene = 128;       // scene: reloads and rebuilds the f
 constexpr std::uint32_t kPublishing = 256;  // publish rates
 constexpr std::uint32_t kPacing = 512;      // real-time factor
 constexpr std::uint32_t kBoundary = 1024;   // walls and obstacles: wall density, friction
+constexpr std::uint32_t kRender = 2048;     // surface rendering: camera, size, filter, rate
 
 // Subsystems handled by SolverParams alone: the fluid keeps its state.
 constexpr std::uint32_t kAnySolverParam =

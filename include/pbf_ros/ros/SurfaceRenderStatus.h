@@ -1,0 +1,19 @@
+#pragma once
+// What the surface render thread reports to the simulation thread's ~stats: written by the
+// render thread, read by anyone, lock-free.
+
+#include <atomic>
+#include <cstdint>
+
+namespace pbf_ros {
+
+struct SurfaceRenderStatus {
+  // A ~surface topic has a subscriber and the GL context works: frames are being rendered.
+  std::atomic<bool> active{false};
+  // Wall time of the last frame: render, read back, convert and publish [ms].
+  std::atomic<double> last_frame_ms{0.0};
+  // Frames rendered since the node started.
+  std::atomic<std::uint64_t> frames{0};
+};
+
+}  // namespace pbf_ros

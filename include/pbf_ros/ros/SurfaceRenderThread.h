@@ -1,0 +1,93 @@
+#pragma once
+// The surface render thread of pbf_node (ARCHITECTURE.md section 4): it owns the GL context
+// (created, used and destroyed on this thread only), takes the latest particle snapshot from
+// the SnapshotBuffer (never blocking the solver) and publishes
+//   ~surface/image_raw + ~surface/camera_info        (image_transport CameraPublisher, rgba8)
+//   ~surface/depth/image_raw + ~surface/depth/camera_info   (32FC1 metres, NaN = no fluid)
+// with one shared header (the snapshot's stamp, frame fluid_camera_optical).
+//
+// Work only while someone listens: without a subscriber to either camera publisher the
+// thread asks for no snapshots (the simulation copies nothing) and renders nothing. At most
+// render_rate frames per second; when a frame takes longer, it simply renders less often.
+// A frame is rendered only for a new snapshot or new settings.
+//
+// A GL context that cannot be created is logged as an error naming the back-end; the
+// simulation runs on without a surface.
+
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <image_transport/image_transport.h>
+#include <ros/ros.h>
+
+#include <pbf_ros/FluidConfig.h>
+
+#include "pbf_ros/render/RenderOutput.h"
+#include "pbf_ros/ros/RenderCameraParams.h"
+#include "pbf_ros/ros/SnapshotBuffer.h"
+#include "pbf_ros/ros/SurfaceRenderStatus.h"
+
+namespace pbf {
+class FluidRenderer;
+}
+
+namespace pbf_ros {
+
+// Start-up parameters of the render thread (private namespace of the node).
+struct SurfaceStartup {
+  std::string backend = "osmesa";     // ~render_backend: osmesa | egl
+  std::string shader_dir;             // ~shader_dir, default <package>/shaders
+  std::string domain_frame = "fluid_domain";              // ~frame_id
+  std::string camera_frame = "fluid_camera_optical";      // ~camera_frame_id
+};
+SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh);
+
+class SurfaceRenderThread {
+ public:
+  // Sends the camera pose as a static transform (the node's broadcaster: one latched
+  // /tf_static publisher per node).
+  using PoseSink = std::function<void(const geometry_msgs::TransformStamped&)>;
+
+  // Advertises the topics and starts the thread, which creates the GL context.
+  SurfaceRenderThread(ros::NodeHandle private_nh, const SurfaceStartup& startup,
+                      SnapshotBuffer& snapshots, SurfaceRenderStatus& status,
+                      PoseSink send_pose);
+  ~SurfaceRenderThread();  // stops the thread; the GL context dies with it
+  SurfaceRenderThread(const SurfaceRenderThread&) = delete;
+  SurfaceRenderThread& operator=(const SurfaceRenderThread&) = delete;
+
+  // New render parameters (any thread; used from the next frame). `container` (fluid_domain)
+  // places the automatic camera and the floor. Re-sends the camera transform when it moved.
+  void configure(const FluidConfig& config, const Eigen::AlignedBox3f& container);
+
+ private:
+  void run();
+  void renderAndPublish(pbf::FluidRenderer& renderer, const ParticleSnapshot& snapshot,
+                        const SurfaceSettings& settings, bool image, bool depth);
+
+  SurfaceStartup startup_;
+  SnapshotBuffer& snapshots_;
+  SurfaceRenderStatus& status_;
+  PoseSink send_pose_;
+  image_transport::ImageTransport transport_;
+  image_transport::CameraPublisher image_pub_, depth_pub_;
+
+  std::mutex mutex_;                   // guards what follows
+  std::condition_variable wake_;
+  bool stop_ = false;
+  bool configured_ = false;
+  SurfaceSettings settings_;
+  std::uint64_t settings_generation_ = 0;
+  geometry_msgs::TransformStamped last_pose_;
+
+  pbf::RenderOutput out_;  // render thread only: buffers reused between frames
+
+  std::thread thread_;
+};
+
+}  // namespace pbf_ros

@@ -1,0 +1,182 @@
+// The surface render thread: GL context, latest snapshot, lazy rendering, publishing.
+#include "pbf_ros/ros/SurfaceRenderThread.h"
+
+#include <chrono>
+#include <ros/package.h>
+
+#include "pbf_ros/render/FluidRenderer.h"
+#include "pbf_ros/render/GlBackend.h"
+#include "pbf_ros/ros/CameraInfoConversion.h"
+#include "pbf_ros/ros/SurfaceImageConversion.h"
+
+namespace pbf_ros {
+
+namespace {
+using SteadyClock = std::chrono::steady_clock;
+// How often an idle thread looks for subscribers (and new settings).
+constexpr std::chrono::milliseconds kIdlePoll(100);
+
+bool samePose(const geometry_msgs::TransformStamped& a, const geometry_msgs::TransformStamped& b) {
+  const auto& p = a.transform.translation;
+  const auto& q = b.transform.translation;
+  const auto& r = a.transform.rotation;
+  const auto& s = b.transform.rotation;
+  return a.header.frame_id == b.header.frame_id && a.child_frame_id == b.child_frame_id &&
+         p.x == q.x && p.y == q.y && p.z == q.z && r.x == s.x && r.y == s.y && r.z == s.z &&
+         r.w == s.w;
+}
+}  // namespace
+
+SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh) {
+  SurfaceStartup s;
+  private_nh.param<std::string>("render_backend", s.backend, s.backend);
+  std::string default_shaders = ros::package::getPath("pbf_ros");
+  if (!default_shaders.empty()) default_shaders += "/shaders";
+  private_nh.param<std::string>("shader_dir", s.shader_dir, default_shaders);
+  private_nh.param<std::string>("frame_id", s.domain_frame, s.domain_frame);
+  private_nh.param<std::string>("camera_frame_id", s.camera_frame, s.camera_frame);
+  return s;
+}
+
+SurfaceRenderThread::SurfaceRenderThread(ros::NodeHandle private_nh, const SurfaceStartup& startup,
+                                         SnapshotBuffer& snapshots, SurfaceRenderStatus& status,
+                                         PoseSink send_pose)
+    : startup_(startup),
+      snapshots_(snapshots),
+      status_(status),
+      send_pose_(std::move(send_pose)),
+      transport_(private_nh) {
+  image_pub_ = transport_.advertiseCamera("surface/image_raw", 1);
+  depth_pub_ = transport_.advertiseCamera("surface/depth/image_raw", 1);
+  thread_ = std::thread(&SurfaceRenderThread::run, this);
+}
+
+SurfaceRenderThread::~SurfaceRenderThread() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+void SurfaceRenderThread::configure(const FluidConfig& config,
+                                    const Eigen::AlignedBox3f& container) {
+  std::vector<std::string> notes;
+  const SurfaceSettings settings = surfaceSettingsFromConfig(config, container, &notes);
+  for (const std::string& note : notes) ROS_WARN("pbf_node: %s", note.c_str());
+  const geometry_msgs::TransformStamped pose = toCameraTransform(
+      settings.camera, startup_.domain_frame, startup_.camera_frame, ros::Time::now());
+  bool moved = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    settings_ = settings;
+    ++settings_generation_;
+    moved = !configured_ || !samePose(pose, last_pose_);
+    configured_ = true;
+    last_pose_ = pose;
+  }
+  if (moved && send_pose_) send_pose_(pose);
+  wake_.notify_all();
+}
+
+void SurfaceRenderThread::run() {
+  std::unique_ptr<pbf::FluidRenderer> renderer;
+  try {
+    renderer = std::make_unique<pbf::FluidRenderer>(pbf::createGlBackend(startup_.backend),
+                                                    startup_.shader_dir);
+    ROS_INFO("pbf_node: surface renderer on '%s' (%s), shaders from %s", startup_.backend.c_str(),
+             renderer->glDescription().c_str(), startup_.shader_dir.c_str());
+  } catch (const std::exception& e) {
+    ROS_ERROR("pbf_node: no surface rendering: cannot set up the '%s' GL back-end (~render_backend): "
+              "%s. The simulation keeps running; ~surface topics stay silent.",
+              startup_.backend.c_str(), e.what());
+  }
+
+  std::uint64_t rendered_version = 0, rendered_generation = 0;
+  auto next_frame = SteadyClock::now();
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stop_) {
+    const SurfaceSettings settings = settings_;
+    const std::uint64_t generation = settings_generation_;
+    const bool configured = configured_;
+    lock.unlock();
+
+    const bool want_image = image_pub_.getNumSubscribers() > 0;
+    const bool want_depth = depth_pub_.getNumSubscribers() > 0;
+    const bool active = renderer && configured && (want_image || want_depth);
+    snapshots_.setRequestedRate(active ? settings.rate : 0.0);
+    status_.active = active;
+    if (!active) {
+      status_.last_frame_ms = 0.0;
+      lock.lock();
+      wake_.wait_for(lock, kIdlePoll);
+      next_frame = SteadyClock::now();
+      continue;
+    }
+
+    const auto snapshot = snapshots_.latest();
+    if (snapshot && !snapshot->positions.empty() &&
+        (snapshot->version != rendered_version || generation != rendered_generation)) {
+      if (generation != rendered_generation) renderer->setOptions(settings.options);
+      renderAndPublish(*renderer, *snapshot, settings, want_image, want_depth);
+      rendered_version = snapshot->version;
+      rendered_generation = generation;
+    }
+
+    // At most render_rate frames per second; a slow frame is not made up for.
+    const auto period = std::chrono::duration_cast<SteadyClock::duration>(
+        std::chrono::duration<double>(1.0 / std::max(settings.rate, 1e-3)));
+    next_frame += period;
+    const auto now = SteadyClock::now();
+    if (next_frame < now) next_frame = now;
+    lock.lock();
+    wake_.wait_until(lock, std::min(next_frame, now + kIdlePoll), [&] {
+      return stop_ || settings_generation_ != generation;
+    });
+  }
+  lock.unlock();
+  snapshots_.setRequestedRate(0.0);
+  status_.active = false;
+  renderer.reset();  // the GL context is destroyed on the thread that owns it
+}
+
+void SurfaceRenderThread::renderAndPublish(pbf::FluidRenderer& renderer,
+                                           const ParticleSnapshot& snapshot,
+                                           const SurfaceSettings& settings, bool image,
+                                           bool depth) {
+  const auto start = SteadyClock::now();
+  pbf::RenderRequest request;
+  request.image = image;
+  request.depth = depth;
+  request.thickness = false;
+  request.normals = false;
+  try {
+    const float radius = 0.5f * snapshot.particle_spacing;
+    renderer.render(snapshot.positions, radius, settings.camera, request, out_,
+                    snapshot.neighbor_counts.size() == snapshot.positions.size()
+                        ? &snapshot.neighbor_counts
+                        : nullptr);
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(5.0, "pbf_node: surface frame failed: %s", e.what());
+    return;
+  }
+
+  std_msgs::Header header;
+  header.stamp = ros::Time(snapshot.stamp);
+  header.frame_id = startup_.camera_frame;
+  const sensor_msgs::CameraInfo info = toCameraInfo(settings.camera, header);
+  if (image) {
+    sensor_msgs::Image msg;
+    if (toColorImage(out_, header, msg)) image_pub_.publish(msg, info);
+  }
+  if (depth) {
+    sensor_msgs::Image msg;
+    if (toDepthImage(out_, header, msg)) depth_pub_.publish(msg, info);
+  }
+  status_.last_frame_ms =
+      std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
+  ++status_.frames;
+}
+
+}  // namespace pbf_ros

@@ -1,0 +1,206 @@
+#!/usr/bin/python3
+"""pbf_node's surface rendering: nothing is rendered without subscribers; once subscribed,
+image, depth and camera_info arrive with one header in fluid_camera_optical; K agrees with
+the image; the camera frame is on tf and looks at the container; a render-only reconfigure
+changes the image and leaves the simulation alone."""
+import math
+import struct
+import threading
+import time
+import unittest
+
+import dynamic_reconfigure.client
+import rospy
+import rostest
+from sensor_msgs.msg import CameraInfo, Image
+from tf2_msgs.msg import TFMessage
+
+from fluid_test_util import NODE, Latest, stats_listener
+
+WIDTH, HEIGHT = 160, 120
+FRAME = 'fluid_camera_optical'
+TOPICS = {
+    'image': (NODE + '/surface/image_raw', Image),
+    'info': (NODE + '/surface/camera_info', CameraInfo),
+    'depth': (NODE + '/surface/depth/image_raw', Image),
+}
+
+
+class ByStamp:
+    """Subscribes to the surface topics and groups their messages by header stamp."""
+
+    def __init__(self):
+        self._cond = threading.Condition()
+        self.messages = {}  # stamp -> {name: msg}
+        self.subs = [rospy.Subscriber(topic, msg_type, self._callback, callback_args=name,
+                                      queue_size=5)
+                     for name, (topic, msg_type) in TOPICS.items()]
+
+    def _callback(self, msg, name):
+        with self._cond:
+            self.messages.setdefault(msg.header.stamp, {})[name] = msg
+            self._cond.notify_all()
+
+    def complete_set(self, timeout, condition=lambda group: True):
+        """Waits for a stamp that all three topics carried (and satisfies condition)."""
+        deadline = time.time() + timeout
+        with self._cond:
+            while True:
+                for stamp in sorted(self.messages):
+                    group = self.messages[stamp]
+                    if len(group) == len(TOPICS) and condition(group):
+                        return stamp, group
+                remaining = deadline - time.time()
+                if remaining <= 0:
+                    raise AssertionError('no image + depth + camera_info with one stamp within '
+                                         '%.1f s (stamps: %s)' % (
+                                             timeout, {s.to_sec(): sorted(g) for s, g in
+                                                       self.messages.items()}))
+                self._cond.wait(remaining)
+
+    def close(self):
+        for sub in self.subs:
+            sub.unregister()
+
+
+def depth_values(msg):
+    return struct.unpack(('>' if msg.is_bigendian else '<') + 'f' * (msg.width * msg.height),
+                         msg.data)
+
+
+def rotate(q, v):
+    """Rotates v by the unit quaternion q = (x, y, z, w)."""
+    x, y, z, w = q
+    # v' = v + 2 w (u x v) + 2 u x (u x v), u = (x, y, z)
+    ux = (y * v[2] - z * v[1], z * v[0] - x * v[2], x * v[1] - y * v[0])
+    uux = (y * ux[2] - z * ux[1], z * ux[0] - x * ux[2], x * ux[1] - y * ux[0])
+    return tuple(v[i] + 2.0 * w * ux[i] + 2.0 * uux[i] for i in range(3))
+
+
+class SurfaceTopicsTest(unittest.TestCase):
+
+    def test_01_no_subscriber_means_no_render_work(self):
+        stats = stats_listener()
+        try:
+            # Let the node start, then watch for a while: nobody subscribes to ~surface.
+            stats.next(timeout=30.0)
+            first = stats.next(timeout=10.0)
+            time.sleep(2.0)
+            last = stats.next(timeout=10.0)
+            for m in (first, last):
+                self.assertIn('surface', m.skipped_stages)
+                self.assertEqual(m.time_render_ms, 0.0)
+                self.assertEqual(m.surface_frames, 0)
+            self.assertGreater(last.step_count, first.step_count)  # the fluid runs meanwhile
+        finally:
+            stats.close()
+
+    def test_02_image_depth_and_camera_info_share_one_header(self):
+        surface = ByStamp()
+        stats = stats_listener()
+        try:
+            stamp, group = surface.complete_set(timeout=25.0)
+            image, info, depth = group['image'], group['info'], group['depth']
+            for m in (image, info, depth):
+                self.assertEqual(m.header.frame_id, FRAME)
+                self.assertEqual(m.header.stamp, stamp)
+            self.assertIn(image.encoding, ('rgba8', 'rgb8'))
+            self.assertEqual((image.width, image.height), (WIDTH, HEIGHT))
+            channels = 4 if image.encoding == 'rgba8' else 3
+            self.assertEqual(image.step, WIDTH * channels)
+            self.assertEqual(len(image.data), HEIGHT * image.step)
+
+            self.assertEqual(depth.encoding, '32FC1')
+            self.assertEqual((depth.width, depth.height), (WIDTH, HEIGHT))
+            self.assertEqual(depth.step, WIDTH * 4)
+            values = depth_values(depth)
+            finite = [v for v in values if math.isfinite(v)]
+            nan = [v for v in values if math.isnan(v)]
+            self.assertGreater(len(finite), 50, 'fluid pixels')
+            self.assertGreater(len(nan), 50, 'no-fluid pixels are NaN')
+            self.assertEqual(len(finite) + len(nan), len(values))  # no inf
+            self.assertTrue(all(0.02 < v < 20.0 for v in finite), 'metres in front of the camera')
+
+            self.assertEqual((info.width, info.height), (WIDTH, HEIGHT))
+            fx, cx, fy, cy = info.K[0], info.K[2], info.K[4], info.K[5]
+            self.assertGreater(fx, 0.0)
+            self.assertAlmostEqual(fx, fy)
+            self.assertAlmostEqual(cx, (WIDTH - 1) / 2.0)
+            self.assertAlmostEqual(cy, (HEIGHT - 1) / 2.0)
+            self.assertEqual(info.K[8], 1.0)
+            self.assertEqual(list(info.P[:3]) + list(info.P[4:7]),
+                             [fx, 0.0, cx, 0.0, fy, cy])
+
+            # While someone listens, the stats show the frames and their cost.
+            m = stats.next(timeout=10.0, condition=lambda m: 'surface' not in m.skipped_stages
+                           and m.surface_frames > 0)
+            self.assertGreater(m.time_render_ms, 0.0)
+        finally:
+            surface.close()
+            stats.close()
+
+    def test_03_camera_frame_on_tf_looks_at_the_container(self):
+        tf_static = Latest('/tf_static', TFMessage)
+        try:
+            m = tf_static.current_or_next(timeout=10.0, condition=lambda m: any(
+                t.child_frame_id == FRAME for t in m.transforms))
+            t = [t for t in m.transforms if t.child_frame_id == FRAME][0]
+            self.assertEqual(t.header.frame_id, 'fluid_domain')
+            tr, rot = t.transform.translation, t.transform.rotation
+            q = (rot.x, rot.y, rot.z, rot.w)
+            # dam_break's container is [0, 1.6] x [0, 0.5] x [0, 0.8]; the automatic camera
+            # looks at its centre from above.
+            centre = (0.8, 0.25, 0.4)
+            to_centre = tuple(centre[i] - p for i, p in enumerate((tr.x, tr.y, tr.z)))
+            forward = rotate(q, (0.0, 0.0, 1.0))   # optical z
+            down = rotate(q, (0.0, 1.0, 0.0))      # optical y
+            norm = math.sqrt(sum(c * c for c in to_centre))
+            cos = sum(forward[i] * to_centre[i] for i in range(3)) / norm
+            self.assertGreater(cos, 0.999)
+            self.assertLess(down[2], 0.0)  # image down points down in the world
+            self.assertGreater(tr.z, centre[2])
+        finally:
+            tf_static.close()
+
+    def test_04_render_reconfigure_changes_the_image_not_the_simulation(self):
+        client = dynamic_reconfigure.client.Client(NODE, timeout=20.0)
+        stats = stats_listener()
+        surface = ByStamp()
+        try:
+            before = stats.next(timeout=10.0)
+            client.update_configuration({'render_width': 120, 'render_height': 90,
+                                         'render_filter': 'bilateral'})
+            _, group = surface.complete_set(
+                timeout=20.0, condition=lambda g: g['image'].width == 120)
+            self.assertEqual(group['image'].height, 90)
+            self.assertEqual(group['depth'].width, 120)
+            self.assertEqual(group['info'].width, 120)
+            self.assertAlmostEqual(group['info'].K[2], (120 - 1) / 2.0)
+            after = stats.next(timeout=10.0)
+            # No reset: the simulation went on.
+            self.assertGreater(after.sim_time, before.sim_time)
+            self.assertGreater(after.step_count, before.step_count)
+        finally:
+            client.update_configuration({'render_width': WIDTH, 'render_height': HEIGHT,
+                                         'render_filter': 'narrow_range'})
+            surface.close()
+            stats.close()
+
+    def test_05_unsubscribed_means_rendering_stops(self):
+        stats = stats_listener()
+        try:
+            # The subscribers of the earlier tests are gone; give the node a moment to notice.
+            m = stats.next(timeout=10.0, condition=lambda m: 'surface' in m.skipped_stages)
+            frames = m.surface_frames
+            time.sleep(2.0)
+            m = stats.next(timeout=10.0)
+            self.assertIn('surface', m.skipped_stages)
+            self.assertEqual(m.surface_frames, frames)
+            self.assertEqual(m.time_render_ms, 0.0)
+        finally:
+            stats.close()
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_surface_topics')
+    rostest.rosrun('pbf_ros', 'surface_topics', SurfaceTopicsTest)
