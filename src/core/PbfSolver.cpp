@@ -433,11 +433,14 @@ void PbfSolver::computeDeltas() {
   const float grad_scale = params_.particleMass() / params_.rest_density;
   const bool scorr = params_.scorr_k > 0.0f;
   const float h2 = k.h2, tiny2 = kCoincident * h2;
-  // s_corr = -k (W(r) / W(dq))^n (Macklin & Mueller eq 13; the seed's eq 11 lost the
-  // parentheses). With k = 0 the loop without it runs: no cost.
+  // s_corr = -k (W(r) / W(dq))^n h^2 (Macklin & Mueller eq 13; the seed's eq 11 lost the
+  // parentheses). It is added to lambda_i + lambda_j, which carry units of m^2 here (with
+  // the particle mass in grad C); the paper's unit-mass, unit-scale form has no such
+  // factor, so h^2 makes k dimensionless: the push it causes is the same fraction of h at
+  // any resolution. With k = 0 the loop without it runs: no cost.
   const float dq = params_.scorr_delta_q * k.h;
   const float poly6_rel = scorr ? k.poly6_coef / k.poly6(dq * dq) : 0.0f;
-  const float scorr_k = params_.scorr_k, scorr_n = params_.scorr_n;
+  const float scorr_k = params_.scorr_k * h2, scorr_n = params_.scorr_n;
   const bool scorr_n4 = scorr_n == 4.0f;
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();

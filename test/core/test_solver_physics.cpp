@@ -77,7 +77,8 @@ Points referenceDelta(const Points& x, const pbf::SolverParams& p) {
       if (j == i) continue;
       const Eigen::Vector3d r = (x[i] - x[j]).cast<double>();
       if (r.squaredNorm() >= h * h) continue;
-      const double scorr = -p.scorr_k * std::pow(poly6(r.squaredNorm()) / poly6(dq * dq), p.scorr_n);  // eq 11
+      // eq 11 (Macklin's parenthesisation), times h^2 to make k dimensionless (PbfSolver.cpp)
+      const double scorr = -p.scorr_k * h * h * std::pow(poly6(r.squaredNorm()) / poly6(dq * dq), p.scorr_n);
       dp += (lambda[i] + lambda[j] + scorr) * spiky(r);    // eq 12
     }
     delta[i] = ((m / rho0) * dp).cast<float>();

@@ -33,7 +33,8 @@ struct SolverParams {
   // C = max(rho/rho0 - 1, 0): only compression is corrected, so surface particles with
   // missing neighbours are not pulled together (no clumping). Off: the seed's C = rho/rho0 - 1.
   bool unilateral_constraint = true;
-  // Artificial pressure s_corr of eq 11 (Monaghan 2000). k = 0 disables it at no cost.
+  // Artificial pressure s_corr of eq 11 (Monaghan 2000), scaled by h^2 so that k is
+  // dimensionless (see PbfSolver.cpp). k = 0 disables it at no cost.
   float scorr_k = 0.0f;
   float scorr_n = 4.0f;
   float scorr_delta_q = 0.2f;          // |dq| as a fraction of h
