@@ -10,6 +10,10 @@ BUILD="${PBF_BUILD_DIR:-$ROOT/build}"
 "$ROOT/scripts/install_deps.sh"
 
 echo "[pbf_ros] configuring in $BUILD"
+# catkin snapshots the environment for tests (catkin_generated/setup_cached.sh) at configure
+# time and only lists devel folders that already exist: without these, a first build gives
+# rostest an empty PYTHONPATH and the test nodes cannot import pbf_ros.msg.
+mkdir -p "$BUILD/devel/lib/python3/dist-packages"
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release > "$BUILD.configure.log" 2>&1 || {
   cat "$BUILD.configure.log"; exit 1; }
 echo "[pbf_ros] building (make -j$(nproc))"
