@@ -116,12 +116,20 @@ def plot_hydrostatic(folder, md):
             ax.plot(x, [scale * num(r, metric) for r in rows], "o-", ms=4)
             if logx:
                 ax.set_xscale("log")
+                ax.set_xticks(x)
+                ax.set_xticklabels([f"{v:g}" for v in x], fontsize=7)
+                ax.minorticks_off()
                 ax.invert_xaxis()
+            if metric == "hydro_avg_err":
+                ax.axhline(0.5, color="r", ls="--", lw=1)  # the target
             ax.set_xlabel(label, fontsize=8)
             ax.set_ylabel(mlabel, fontsize=8)
             ax.grid(alpha=0.3)
             if metric in ("hydro_avg_err", "hydro_max_err", "hydro_speed_max"):
                 ax.set_yscale("log")
+                if logx:
+                    ax.minorticks_off()
+                    ax.set_xticks(x)
     fig.suptitle("Hydrostatic tank (0.3 m of water, d = 0.02), measured over the last 0.5 s of 1.5 s")
     fig.tight_layout()
     save(fig, folder, "hydrostatic.png")

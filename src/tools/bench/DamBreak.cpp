@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "bench/BenchScenes.h"
+#include "bench/Progress.h"
 #include "bench/SurfaceMetrics.h"
 
 namespace pbf_bench {
@@ -12,10 +13,30 @@ const std::vector<double>& profileTimes() {
   return t;
 }
 
+Positions settledColumn(const pbf::Scene& scene, Progress* progress) {
+  pbf::Scene column = scene;
+  column.container.max().x() = scene.fluid.at(0).max.x();
+  column.solver.adaptive_time_step = false;
+  column.solver.time_step = 1.0f / 240.0f;
+  column.solver.min_iterations = 2;
+  column.solver.max_iterations = 50;
+  column.solver.density_tolerance = 0.0005f;
+  auto solver = makeSolver(column);
+  const int steps = 120;
+  for (int k = 0; k < steps; ++k) {
+    solver->step();
+    const Positions x = solver->positions();
+    solver->setParticles(x);  // zero velocities: relax towards equilibrium, no oscillation
+    if (progress) progress->update(double(k + 1) / steps, "settling the column");
+  }
+  return solver->positions();
+}
+
 DamBreakResult runDamBreak(const pbf::Scene& scene, const FrontCurve& reference,
-                           Progress* progress) {
+                           Progress* progress, const Positions* start) {
   DamBreakResult r;
   auto solver = makeSolver(scene);
+  if (start) solver->setParticles(*start);
   r.particles = solver->size();
   r.a = damBreakWidth(scene);
   const double g = scene.solver.gravity.norm();
