@@ -66,6 +66,20 @@ struct Pair {
   float rlen;
 };
 
+// s_corr is an artificial pressure, i.e. a force: the displacement it causes must scale
+// with dt^2, or a small (CFL) dt turns its fixed push into unbounded speeds (push / dt),
+// which shrinks dt further. The paper tuned k at dt = 1/60 s, so that is where the factor
+// is 1; it never exceeds 1 (larger steps get no larger push).
+constexpr float kScorrReferenceDt = 1.0f / 60.0f;
+inline float scorrTimeScale(float dt) {
+  const float r = dt / kScorrReferenceDt;
+  return std::min(1.0f, r * r);
+}
+
+// Largest displacement s_corr may cause in one iteration at the reference dt, as a
+// fraction of the spacing.
+constexpr float kMaxScorrShift = 0.1f;
+
 // Pairs closer than sqrt(kCoincident) h are treated as coincident.
 constexpr float kCoincident = 1e-12f;
 
@@ -228,6 +242,7 @@ std::vector<StepStats> PbfSolver::advance(double duration) {
 
 bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   stats.dt = dt;
+  current_dt_ = dt;
   auto t = Clock::now();
   const bool predicted_finite = predict(dt);
   stats.times.other_ms += msSince(t);
@@ -440,8 +455,10 @@ void PbfSolver::computeDeltas() {
   // any resolution. With k = 0 the loop without it runs: no cost.
   const float dq = params_.scorr_delta_q * k.h;
   const float poly6_rel = scorr ? k.poly6_coef / k.poly6(dq * dq) : 0.0f;
-  const float scorr_k = params_.scorr_k * h2, scorr_n = params_.scorr_n;
+  const float scorr_k = params_.scorr_k * h2 * scorrTimeScale(current_dt_), scorr_n = params_.scorr_n;
   const bool scorr_n4 = scorr_n == 4.0f;
+  const float max_scorr_shift2 =
+      std::pow(kMaxScorrShift * params_.particle_spacing * scorrTimeScale(current_dt_), 2.0f);
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
 
@@ -463,7 +480,8 @@ void PbfSolver::computeDeltas() {
         dz_sum += g * dz;
       }
     } else {
-#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
+      float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // the s_corr part, kept apart to be bounded
+#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, sx, sy, sz, coincident)
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
         const std::uint32_t j = nbr[e];
         const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
@@ -471,26 +489,41 @@ void PbfSolver::computeDeltas() {
         const float w = std::max(h2 - r2, 0.0f);
         const float rel = poly6_rel * w * w * w;
         const float s = scorr_n4 ? (rel * rel) * (rel * rel) : std::pow(rel, scorr_n);
-        const float g = (li + L[j] - scorr_k * s) * G[e];
+        const float g = (li + L[j]) * G[e];
+        const float gs = -scorr_k * s * G[e];
         coincident += r2 <= tiny2 ? 1 : 0;
         dx_sum += g * dx;
         dy_sum += g * dy;
         dz_sum += g * dz;
+        sx += gs * dx;
+        sy += gs * dy;
+        sz += gs * dz;
       }
+      // s_corr is an artificial pressure against clustering: it may nudge a particle by
+      // at most kMaxScorrShift of the spacing per iteration (at the reference dt). Within
+      // that (k up to ~1) it acts as Macklin & Mueller describe; beyond, it saturates
+      // instead of pumping energy into the fluid (the stress suite's s_corr k = 10 case).
+      const float s_len2 = sx * sx + sy * sy + sz * sz;
+      const float scale = s_len2 > max_scorr_shift2 ? std::sqrt(max_scorr_shift2 / s_len2) : 1.0f;
+      dx_sum += scale * sx;
+      dy_sum += scale * sy;
+      dz_sum += scale * sz;
     }
     Eigen::Vector3f dp(dx_sum, dy_sum, dz_sum);
     if (coincident > 0) {  // rare: exact path with directions for coincident pairs
       dp.setZero();
+      Eigen::Vector3f shift = Eigen::Vector3f::Zero();  // s_corr part, bounded as above
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
         const std::uint32_t j = nbr[e];
-        float s = li + L[j];
+        const Eigen::Vector3f grad = grad_scale * pairGradient(i, j);
+        dp += (li + L[j]) * grad;
         if (scorr) {
           const float r2 = (predicted_[i] - predicted_[j]).squaredNorm();
-          s -= scorr_k * std::pow(poly6_rel * std::pow(std::max(h2 - r2, 0.0f), 3.0f), scorr_n);
+          shift -= scorr_k * std::pow(poly6_rel * std::pow(std::max(h2 - r2, 0.0f), 3.0f), scorr_n) * grad;
         }
-        dp += s * pairGradient(i, j);
       }
-      dp *= grad_scale;
+      if (shift.squaredNorm() > max_scorr_shift2) shift *= std::sqrt(max_scorr_shift2 / shift.squaredNorm());
+      dp += shift;
     }
     delta_[i] = dp;
     if (walls && li != 0.0f) {  // lambda_i times the solids' part of grad_i C_i

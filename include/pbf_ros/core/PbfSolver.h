@@ -123,6 +123,7 @@ class PbfSolver {
 
   std::unique_ptr<NeighborGrid> grid_;
   bool lists_valid_ = false;
+  float current_dt_ = 0.0f;  // dt of the attempt in progress (s_corr scales with it)
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;
 };
