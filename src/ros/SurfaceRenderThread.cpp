@@ -1,8 +1,13 @@
 // The surface render thread: GL context, latest snapshot, lazy rendering, publishing.
 #include "pbf_ros/ros/SurfaceRenderThread.h"
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <ros/package.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include "pbf_ros/render/FluidRenderer.h"
 #include "pbf_ros/render/GlBackend.h"
@@ -35,6 +40,7 @@ SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh) {
   private_nh.param<std::string>("shader_dir", s.shader_dir, default_shaders);
   private_nh.param<std::string>("frame_id", s.domain_frame, s.domain_frame);
   private_nh.param<std::string>("camera_frame_id", s.camera_frame, s.camera_frame);
+  private_nh.param("render_nice", s.nice, s.nice);
   return s;
 }
 
@@ -81,6 +87,17 @@ void SurfaceRenderThread::configure(const FluidConfig& config,
 }
 
 void SurfaceRenderThread::run() {
+  if (startup_.nice != 0) {
+    // Linux: the nice value belongs to the thread; threads started from here inherit it.
+    const pid_t tid = static_cast<pid_t>(syscall(SYS_gettid));
+    errno = 0;
+    const int current = getpriority(PRIO_PROCESS, static_cast<id_t>(tid));
+    if (errno != 0 ||
+        setpriority(PRIO_PROCESS, static_cast<id_t>(tid), current + startup_.nice) != 0) {
+      ROS_WARN("pbf_node: cannot lower the render thread's priority (~render_nice %d): %s",
+               startup_.nice, std::strerror(errno));
+    }
+  }
   std::unique_ptr<pbf::FluidRenderer> renderer;
   try {
     renderer = std::make_unique<pbf::FluidRenderer>(pbf::createGlBackend(startup_.backend),

@@ -44,6 +44,10 @@ struct SurfaceStartup {
   std::string shader_dir;             // ~shader_dir, default <package>/shaders
   std::string domain_frame = "fluid_domain";              // ~frame_id
   std::string camera_frame = "fluid_camera_optical";      // ~camera_frame_id
+  // ~render_nice: niceness added to the render thread (and the GL threads it starts, e.g.
+  // llvmpipe's), so that on a busy machine the solver gets the CPU first and the surface
+  // is rendered less often, rather than the other way round. 0 = same priority.
+  int nice = 10;
 };
 SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh);
 
