@@ -20,6 +20,40 @@ namespace {
 using SteadyClock = std::chrono::steady_clock;
 // How often an idle thread looks for subscribers (and new settings).
 constexpr std::chrono::milliseconds kIdlePoll(100);
+// How often a due frame looks for a snapshot it has not rendered yet.
+constexpr std::chrono::milliseconds kSnapshotPoll(10);
+
+// Identifies the fluid state of a snapshot: equal keys = the same particles in the same
+// places (a paused simulation keeps writing snapshots of an unchanged state).
+struct FluidStateKey {
+  std::uint64_t step_count = ~0ull;
+  double sim_time = -1.0;
+  std::size_t size = 0;
+  std::uint64_t hash = 0;
+  bool operator==(const FluidStateKey& o) const {
+    return step_count == o.step_count && sim_time == o.sim_time && size == o.size &&
+           hash == o.hash;
+  }
+};
+
+FluidStateKey fluidStateKey(const ParticleSnapshot& snapshot) {
+  FluidStateKey key;
+  key.step_count = snapshot.step_count;
+  key.sim_time = snapshot.sim_time;
+  key.size = snapshot.positions.size();
+  // FNV-1a over the coordinates' bits: a reset or a scene change to the same step and time
+  // still changes the positions.
+  std::uint64_t h = 1469598103934665603ull;
+  for (const Eigen::Vector3f& p : snapshot.positions) {
+    for (int i = 0; i < 3; ++i) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &p[i], sizeof(bits));
+      h = (h ^ bits) * 1099511628211ull;
+    }
+  }
+  key.hash = h;
+  return key;
+}
 
 bool samePose(const geometry_msgs::TransformStamped& a, const geometry_msgs::TransformStamped& b) {
   const auto& p = a.transform.translation;
@@ -52,8 +86,18 @@ SurfaceRenderThread::SurfaceRenderThread(ros::NodeHandle private_nh, const Surfa
       status_(status),
       send_pose_(std::move(send_pose)),
       transport_(private_nh) {
-  image_pub_ = transport_.advertiseCamera("surface/image_raw", 1);
-  depth_pub_ = transport_.advertiseCamera("surface/depth/image_raw", 1);
+  // Every new connection (image or camera_info, any transport) gets a frame even when the
+  // fluid has not changed since the last one (a paused simulation).
+  const image_transport::SubscriberStatusCallback image_connected =
+      [this](const image_transport::SingleSubscriberPublisher&) { onNewSubscriber(); };
+  const ros::SubscriberStatusCallback info_connected =
+      [this](const ros::SingleSubscriberPublisher&) { onNewSubscriber(); };
+  image_pub_ = transport_.advertiseCamera("surface/image_raw", 1, image_connected,
+                                          image_transport::SubscriberStatusCallback(),
+                                          info_connected, ros::SubscriberStatusCallback());
+  depth_pub_ = transport_.advertiseCamera("surface/depth/image_raw", 1, image_connected,
+                                          image_transport::SubscriberStatusCallback(),
+                                          info_connected, ros::SubscriberStatusCallback());
   thread_ = std::thread(&SurfaceRenderThread::run, this);
 }
 
@@ -64,6 +108,14 @@ SurfaceRenderThread::~SurfaceRenderThread() {
   }
   wake_.notify_all();
   if (thread_.joinable()) thread_.join();
+}
+
+void SurfaceRenderThread::onNewSubscriber() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    new_subscriber_ = true;
+  }
+  wake_.notify_all();
 }
 
 void SurfaceRenderThread::configure(const FluidConfig& config,
@@ -110,46 +162,62 @@ void SurfaceRenderThread::run() {
               startup_.backend.c_str(), e.what());
   }
 
-  std::uint64_t rendered_version = 0, rendered_generation = 0;
+  // What was rendered last: a frame is rendered for a fluid that changed, new settings or a
+  // new subscriber, never twice for the same state (a paused simulation costs nothing).
+  FluidStateKey rendered_state;
+  std::uint64_t rendered_generation = 0;
   auto next_frame = SteadyClock::now();
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
     const SurfaceSettings settings = settings_;
     const std::uint64_t generation = settings_generation_;
     const bool configured = configured_;
+    const bool newcomer = new_subscriber_;
     lock.unlock();
 
-    const bool want_image = image_pub_.getNumSubscribers() > 0;
-    const bool want_depth = depth_pub_.getNumSubscribers() > 0;
-    const bool active = renderer && configured && (want_image || want_depth);
+    const int image_count = static_cast<int>(image_pub_.getNumSubscribers());
+    const int depth_count = static_cast<int>(depth_pub_.getNumSubscribers());
+    const bool active = renderer && configured && (image_count > 0 || depth_count > 0);
     snapshots_.setRequestedRate(active ? settings.rate : 0.0);
     status_.active = active;
     if (!active) {
       status_.last_frame_ms = 0.0;
+      rendered_state = FluidStateKey();
       lock.lock();
-      wake_.wait_for(lock, kIdlePoll);
+      wake_.wait_for(lock, kIdlePoll, [&] { return stop_; });
       next_frame = SteadyClock::now();
       continue;
     }
 
-    const auto snapshot = snapshots_.latest();
-    if (snapshot && !snapshot->positions.empty() &&
-        (snapshot->version != rendered_version || generation != rendered_generation)) {
-      if (generation != rendered_generation) renderer->setOptions(settings.options);
-      renderAndPublish(*renderer, *snapshot, settings, want_image, want_depth);
-      rendered_version = snapshot->version;
-      rendered_generation = generation;
+    auto now = SteadyClock::now();
+    if (now >= next_frame) {
+      const auto snapshot = snapshots_.latest();
+      if (snapshot && !snapshot->positions.empty()) {
+        const FluidStateKey state = fluidStateKey(*snapshot);
+        if (newcomer || !(state == rendered_state) || generation != rendered_generation) {
+          if (generation != rendered_generation) renderer->setOptions(settings.options);
+          renderAndPublish(*renderer, *snapshot, settings, image_count > 0, depth_count > 0);
+          rendered_state = state;
+          rendered_generation = generation;
+          if (newcomer) {
+            lock.lock();
+            new_subscriber_ = false;
+            lock.unlock();
+          }
+          // At most render_rate frames per second; a slow frame is not made up for.
+          next_frame += std::chrono::duration_cast<SteadyClock::duration>(
+              std::chrono::duration<double>(1.0 / std::max(settings.rate, 1e-3)));
+          now = SteadyClock::now();
+          if (next_frame < now) next_frame = now;
+        }
+      }
     }
-
-    // At most render_rate frames per second; a slow frame is not made up for.
-    const auto period = std::chrono::duration_cast<SteadyClock::duration>(
-        std::chrono::duration<double>(1.0 / std::max(settings.rate, 1e-3)));
-    next_frame += period;
-    const auto now = SteadyClock::now();
-    if (next_frame < now) next_frame = now;
+    // Sleep until the next frame is due; while one is due, look for a fresh snapshot often.
+    auto wake = std::min(next_frame, now + kIdlePoll);
+    if (wake <= now) wake = now + kSnapshotPoll;
     lock.lock();
-    wake_.wait_until(lock, std::min(next_frame, now + kIdlePoll), [&] {
-      return stop_ || settings_generation_ != generation;
+    wake_.wait_until(lock, wake, [&] {
+      return stop_ || settings_generation_ != generation || (new_subscriber_ && !newcomer);
     });
   }
   lock.unlock();

@@ -2,9 +2,11 @@
 """pbf_node's surface rendering: nothing is rendered without subscribers; once subscribed,
 image, depth and camera_info arrive with one header in fluid_camera_optical; K agrees with
 the image; the camera frame is on tf and looks at the container; a render-only reconfigure
-changes the image and leaves the simulation alone."""
+changes the image and leaves the simulation alone; a paused fluid is not rendered over and
+over; a camera position set by hand replaces the automatic camera."""
 import math
 import struct
+import subprocess
 import threading
 import time
 import unittest
@@ -13,6 +15,7 @@ import dynamic_reconfigure.client
 import rospy
 import rostest
 from sensor_msgs.msg import CameraInfo, Image
+from std_srvs.srv import SetBool
 from tf2_msgs.msg import TFMessage
 
 from fluid_test_util import NODE, Latest, stats_listener
@@ -186,7 +189,58 @@ class SurfaceTopicsTest(unittest.TestCase):
             surface.close()
             stats.close()
 
-    def test_05_unsubscribed_means_rendering_stops(self):
+    def test_05_paused_fluid_is_not_rendered_again_but_newcomers_get_a_frame(self):
+        pause = rospy.ServiceProxy(NODE + '/pause', SetBool)
+        pause.wait_for_service(timeout=10.0)
+        surface = ByStamp()
+        stats = stats_listener()
+        try:
+            surface.complete_set(timeout=20.0)
+            self.assertTrue(pause(True).success)
+            time.sleep(1.0)
+            frames = stats.next(timeout=10.0).surface_frames
+            time.sleep(1.5)
+            self.assertEqual(stats.next(timeout=10.0).surface_frames, frames,
+                             'a paused fluid is rendered once, not again and again')
+            # Someone who subscribes now still gets the (paused) surface. Another process:
+            # rospy would share this process's connection and never connect anew.
+            out = subprocess.run(['rostopic', 'echo', '-n', '1', NODE + '/surface/image_raw/header'],
+                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=20.0,
+                                 check=False, universal_newlines=True)
+            self.assertEqual(out.returncode, 0, out.stdout)
+            self.assertIn(FRAME, out.stdout)
+        finally:
+            pause(False)
+            surface.close()
+            stats.close()
+
+    def test_06_moving_the_camera_turns_the_automatic_camera_off_and_moves_the_frame(self):
+        client = dynamic_reconfigure.client.Client(NODE, timeout=20.0)
+        tf_static = Latest('/tf_static', TFMessage)
+        try:
+            config = client.update_configuration({'camera_position_x': 3.0,
+                                                  'camera_position_y': 0.25,
+                                                  'camera_position_z': 0.4,
+                                                  'camera_look_at_x': 0.0,
+                                                  'camera_look_at_y': 0.25,
+                                                  'camera_look_at_z': 0.4})
+            self.assertFalse(config['camera_auto'])
+
+            def moved(m):
+                return any(t.child_frame_id == FRAME and
+                           abs(t.transform.translation.x - 3.0) < 1e-6 for t in m.transforms)
+            m = tf_static.current_or_next(timeout=10.0, condition=moved)
+            t = [t for t in m.transforms if t.child_frame_id == FRAME][0]
+            r = t.transform.rotation
+            forward = rotate((r.x, r.y, r.z, r.w), (0.0, 0.0, 1.0))
+            self.assertAlmostEqual(forward[0], -1.0, places=5)  # looking along -x
+            # The fluid frame is still there (one latched /tf_static for both).
+            self.assertTrue(any(t.child_frame_id == 'fluid_domain' for t in m.transforms))
+        finally:
+            client.update_configuration({'camera_auto': True})
+            tf_static.close()
+
+    def test_07_unsubscribed_means_rendering_stops(self):
         stats = stats_listener()
         try:
             # The subscribers of the earlier tests are gone; give the node a moment to notice.

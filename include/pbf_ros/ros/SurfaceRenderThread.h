@@ -9,7 +9,8 @@
 // Work only while someone listens: without a subscriber to either camera publisher the
 // thread asks for no snapshots (the simulation copies nothing) and renders nothing. At most
 // render_rate frames per second; when a frame takes longer, it simply renders less often.
-// A frame is rendered only for a new snapshot or new settings.
+// A frame is rendered only for a changed fluid, new settings or a newly connected
+// subscriber: a paused simulation is rendered once, not over and over.
 //
 // A GL context that cannot be created is logged as an error naming the back-end; the
 // simulation runs on without a surface.
@@ -71,6 +72,7 @@ class SurfaceRenderThread {
 
  private:
   void run();
+  void onNewSubscriber();  // a subscriber connected (spinner thread)
   void renderAndPublish(pbf::FluidRenderer& renderer, const ParticleSnapshot& snapshot,
                         const SurfaceSettings& settings, bool image, bool depth);
 
@@ -85,6 +87,7 @@ class SurfaceRenderThread {
   std::condition_variable wake_;
   bool stop_ = false;
   bool configured_ = false;
+  bool new_subscriber_ = false;        // someone connected since the last frame
   SurfaceSettings settings_;
   std::uint64_t settings_generation_ = 0;
   geometry_msgs::TransformStamped last_pose_;
