@@ -173,6 +173,11 @@ void FluidNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
     health_.failed_steps_recent = 0;
   }
   reportHealth(sample, thresholds_, status);
+  // The surface renderer's work (its own thread; see SurfaceRenderThread).
+  const bool rendering = surface_status_.active.load();
+  status.add("surface rendering", rendering ? "active (subscribed)" : "idle (no subscriber)");
+  status.add("surface frames rendered", surface_status_.frames.load());
+  status.add("surface frame time [ms]", rendering ? surface_status_.last_frame_ms.load() : 0.0);
 }
 
 }  // namespace pbf_ros

@@ -14,6 +14,7 @@ import unittest
 import dynamic_reconfigure.client
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray
 from sensor_msgs.msg import CameraInfo, Image
 from std_srvs.srv import SetBool
 from tf2_msgs.msg import TFMessage
@@ -253,6 +254,19 @@ class SurfaceTopicsTest(unittest.TestCase):
             self.assertEqual(m.time_render_ms, 0.0)
         finally:
             stats.close()
+
+    def test_08_diagnostics_report_the_surface_renderer(self):
+        diagnostics = Latest('/diagnostics', DiagnosticArray)
+        try:
+            m = diagnostics.next(timeout=15.0, condition=lambda m: any(
+                'fluid' in s.name for s in m.status))
+            status = [s for s in m.status if 'fluid' in s.name][0]
+            values = {kv.key: kv.value for kv in status.values}
+            self.assertIn('surface frames rendered', values)
+            self.assertGreater(int(values['surface frames rendered']), 0)
+            self.assertTrue(values['surface rendering'].startswith('idle'), values)
+        finally:
+            diagnostics.close()
 
 
 if __name__ == '__main__':
