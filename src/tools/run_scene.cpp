@@ -8,6 +8,8 @@
 #include <iostream>
 #include <string>
 
+#include "pbf_ros/core/Metrics.h"
+#include "pbf_ros/core/NeighborGrid.h"
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
 #include "pbf_ros/core/SceneSetup.h"
@@ -90,6 +92,22 @@ int main(int argc, char** argv) {
       }
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    double sum_v2 = 0.0;
+    for (const auto& vel : solver.velocities()) sum_v2 += vel.squaredNorm();
+    // Close pairs (< d/2) measure clumping: a fluid at rest density has none.
+    std::size_t close_pairs = 0;
+    {
+      const float d = scene.solver.particle_spacing;
+      pbf::NeighborGrid grid;
+      const auto& order = grid.build(solver.positions(), 0.5f * d);
+      std::vector<Eigen::Vector3f> sorted(order.size());
+      for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = solver.positions()[order[k]];
+      grid.findNeighbors(sorted, 0.5f * d);
+      close_pairs = grid.indices().size() / 2;
+    }
+    std::printf("pbf_run: final free-surface height %.4f m, rms speed %.4f m/s, pairs closer than d/2: %zu\n",
+                pbf::freeSurfaceHeight(solver.positions(), scene.solver.particle_spacing, scene.container),
+                std::sqrt(sum_v2 / std::max<std::size_t>(solver.size(), 1)), close_pairs);
     std::printf("pbf_run: %.2f s simulated in %.2f s wall (real-time factor %.2f), %llu steps, "
                 "%d NaN retries\n",
                 solver.time(), wall, solver.time() / wall,
