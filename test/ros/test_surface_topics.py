@@ -241,6 +241,30 @@ class SurfaceTopicsTest(unittest.TestCase):
             client.update_configuration({'camera_auto': True})
             tf_static.close()
 
+    def test_06b_scene_change_reframes_the_automatic_camera(self):
+        client = dynamic_reconfigure.client.Client(NODE, timeout=20.0)
+        tf_static = Latest('/tf_static', TFMessage)
+        try:
+            config = client.update_configuration({'camera_auto': True,
+                                                  'scene': 'hydrostatic_tank'})
+            self.assertTrue(config['camera_auto'])
+            centre = (0.2, 0.2, 0.3)  # hydrostatic_tank: [0, 0.4] x [0, 0.4] x [0, 0.6]
+
+            def looks_at_centre(m):
+                for t in m.transforms:
+                    if t.child_frame_id != FRAME:
+                        continue
+                    tr, r = t.transform.translation, t.transform.rotation
+                    to_centre = [centre[i] - p for i, p in enumerate((tr.x, tr.y, tr.z))]
+                    norm = math.sqrt(sum(c * c for c in to_centre))
+                    forward = rotate((r.x, r.y, r.z, r.w), (0.0, 0.0, 1.0))
+                    return sum(forward[i] * to_centre[i] for i in range(3)) / norm > 0.999
+                return False
+            tf_static.current_or_next(timeout=10.0, condition=looks_at_centre)
+        finally:
+            client.update_configuration({'scene': 'dam_break'})
+            tf_static.close()
+
     def test_07_unsubscribed_means_rendering_stops(self):
         stats = stats_listener()
         try:
