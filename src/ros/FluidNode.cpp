@@ -175,7 +175,13 @@ void FluidNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   reportHealth(sample, thresholds_, status);
   // The surface renderer's work (its own thread; see SurfaceRenderThread).
   const bool rendering = surface_status_.active.load();
-  status.add("surface rendering", rendering ? "active (subscribed)" : "idle (no subscriber)");
+  if (surface_status_.unavailable.load()) {
+    status.add("surface rendering", "unavailable: no GL context (see the node's log)");
+    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,
+                        "no surface rendering (GL back-end failed)");
+  } else {
+    status.add("surface rendering", rendering ? "active (subscribed)" : "idle (no subscriber)");
+  }
   status.add("surface frames rendered", surface_status_.frames.load());
   status.add("surface frame time [ms]", rendering ? surface_status_.last_frame_ms.load() : 0.0);
 }

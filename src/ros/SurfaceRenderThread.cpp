@@ -160,6 +160,7 @@ void SurfaceRenderThread::run() {
     ROS_ERROR("pbf_node: no surface rendering: cannot set up the '%s' GL back-end (~render_backend): "
               "%s. The simulation keeps running; ~surface topics stay silent.",
               startup_.backend.c_str(), e.what());
+    status_.unavailable = true;
   }
 
   // What was rendered last: a frame is rendered for a fluid that changed, new settings or a

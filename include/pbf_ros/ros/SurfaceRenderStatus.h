@@ -12,6 +12,8 @@ struct SurfaceRenderStatus {
   std::atomic<bool> active{false};
   // Wall time of the last frame: render, read back, convert and publish [ms].
   std::atomic<double> last_frame_ms{0.0};
+  // The GL context (or the shaders) could not be set up: no surface until a restart.
+  std::atomic<bool> unavailable{false};
   // Frames rendered since the node started.
   std::atomic<std::uint64_t> frames{0};
 };
