@@ -178,11 +178,11 @@ def plot_pareto(folder, md):
     axes[0].legend(fontsize=7)
     fig.tight_layout()
     save(fig, folder, "pareto.png")
-    md.append("| setting | group | hydro wall s/s | avg err | dam wall s/s | mean iter | front RMS | RMS shifted | deviation |")
+    md.append("| setting | group | hydro wall (cpu) s/s | avg err | dam wall (cpu) s/s | mean iter | front RMS | RMS shifted | deviation |")
     md.append("|---|---|---|---|---|---|---|---|---|")
     for r in sweep:
-        md.append(f"| {r['name']} | {r['group']} | {num(r, 'hydro_wall_per_sim'):.2f} | "
-                  f"{100 * num(r, 'hydro_avg_err'):.3f} % | {num(r, 'dam_wall_per_sim'):.2f} | "
+        md.append(f"| {r['name']} | {r['group']} | {num(r, 'hydro_wall_per_sim'):.2f} ({num(r, 'hydro_cpu_per_sim'):.2f}) | "
+                  f"{100 * num(r, 'hydro_avg_err'):.3f} % | {num(r, 'dam_wall_per_sim'):.2f} ({num(r, 'dam_cpu_per_sim'):.2f}) | "
                   f"{num(r, 'dam_mean_iterations'):.1f} | {num(r, 'dam_rms_no_shift'):.3f} | "
                   f"{num(r, 'dam_rms_shifted'):.3f} | {num(r, 'dam_deviation'):.3f} |")
     md.append("")
@@ -257,6 +257,7 @@ def plot_stress(folder, md):
             ax.plot(t, ratio, lw=1, label=case)
         ax.axhline(1.0, color="k", ls="--", lw=1)
         ax.set_xscale("symlog", linthresh=0.01)
+        ax.set_xlim(left=0)
         ax.set_yscale("log")
         ax.set_xlabel("simulated time [s]")
         ax.set_ylabel("E_kin / bound")

@@ -1,7 +1,7 @@
 // pbf_bench: the proof that the solver is accurate and fast (issue 5). No ROS.
 //
 //   pbf_bench [--out DIR] [--only dambreak,sweep,scaling] [--quick] [--threads N]
-//             [--reference CSV] [--scenes-dir DIR] [--no-progress]
+//             [--reference CSV] [--scenes-dir DIR] [--no-progress] [--set key=value]...
 //
 // Studies (each writes CSV files into DIR; scripts/plot_bench.py turns them into PNGs):
 //   dambreak  surge front Z(T) against Martin & Moyce (1952) at three resolutions and for
@@ -11,6 +11,7 @@
 //             wall seconds per simulated second (hydrostatic study + Pareto) -> sweep.csv
 //   scaling   ms per step against particles (10k..320k) and threads -> scaling.csv
 // --quick runs smaller, shorter versions of each (for checking the pipeline, not figures).
+// --set overrides a solver parameter in the dam-break study (e.g. proposed defaults).
 
 #include <omp.h>
 
@@ -34,7 +35,7 @@ const std::set<std::string> kStudies = {"dambreak", "sweep", "scaling"};
 
 void usage(std::ostream& out) {
   out << "usage: pbf_bench [--out DIR] [--only dambreak,sweep,scaling] [--quick] [--threads N]\n"
-         "                 [--reference CSV] [--scenes-dir DIR] [--no-progress]\n";
+         "                 [--reference CSV] [--scenes-dir DIR] [--no-progress] [--set key=value]...\n";
 }
 
 int parseInt(const std::string& option, const std::string& text) {
@@ -70,6 +71,13 @@ int main(int argc, char** argv) {
       else if (a == "--no-progress") o.progress = false;
       else if (a == "--reference") o.reference_csv = value();
       else if (a == "--scenes-dir") o.scenes_dir = value();
+      else if (a == "--set") {
+        const std::string kv = value();
+        const auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0)
+          throw std::invalid_argument("--set expects key=value, got '" + kv + "'");
+        o.solver_overrides += kv.substr(0, eq) + ": " + kv.substr(eq + 1) + "\n";
+      }
       else if (a == "--threads") {
         o.threads = parseInt(a, value());
         if (o.threads < 1) throw std::invalid_argument("--threads must be >= 1");

@@ -12,6 +12,9 @@ struct BenchOptions {
   bool quick = false;           // smaller, shorter runs for fast iteration (not for figures)
   bool progress = true;
   int threads = 0;              // 0: OpenMP default
+  // YAML map of solver parameters (--set key=value) applied to the dam-break study's
+  // scenes, e.g. to validate proposed defaults. The sweep and scaling set their own.
+  std::string solver_overrides;
 };
 
 }  // namespace pbf_bench

@@ -38,6 +38,7 @@ std::vector<Resolution> resolutions(bool quick) {
 
 void runDamBreakStudy(const BenchOptions& o) {
   std::printf("\n== dam break vs Martin & Moyce (1952), n^2 = 2 ==\n");
+  if (!o.solver_overrides.empty()) std::printf("solver overrides:\n%s", o.solver_overrides.c_str());
   const FrontCurve reference = loadFrontCurve(o.reference_csv);
   CsvWriter fronts(o.out_dir + "/dambreak_front.csv", {"run", "spacing", "T", "Z"});
   CsvWriter summary(o.out_dir + "/dambreak_summary.csv",
@@ -46,7 +47,8 @@ void runDamBreakStudy(const BenchOptions& o) {
   std::printf("%-30s %9s %8s %13s %7s %12s %9s\n", "run", "particles", "a/d", "RMS(no shift)",
               "shift", "RMS(shift)", "wall/sim");
   for (const Resolution& res : resolutions(o.quick)) {
-    const pbf::Scene scene = damBreakScene(o.scenes_dir, res.spacing, res.depth);
+    pbf::Scene scene = damBreakScene(o.scenes_dir, res.spacing, res.depth);
+    if (!o.solver_overrides.empty()) pbf::applySolverYaml(o.solver_overrides, "--set", scene.solver);
     Progress progress("dam break " + res.label, o.progress);
     const Positions start = res.settled ? settledColumn(scene, &progress) : Positions();
     const DamBreakResult r = runDamBreak(scene, reference, &progress, res.settled ? &start : nullptr);

@@ -1,6 +1,7 @@
 #include "bench/SceneRun.h"
 
 #include <cstdio>
+#include <ctime>
 
 #include "bench/Progress.h"
 
@@ -20,6 +21,7 @@ RunTotals runUntil(pbf::PbfSolver& solver, double t_end, const StepObserver& obs
                    Progress* progress) {
   RunTotals totals;
   const double t0 = solver.time();
+  const std::clock_t cpu0 = std::clock();
   while (solver.time() < t_end - 1e-9) {
     const pbf::StepStats st = solver.step();
     totals.step_wall_seconds += st.times.total_ms * 1e-3;
@@ -38,6 +40,7 @@ RunTotals runUntil(pbf::PbfSolver& solver, double t_end, const StepObserver& obs
     }
   }
   totals.sim_seconds = solver.time() - t0;
+  totals.cpu_seconds = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
   return totals;
 }
 

@@ -17,11 +17,15 @@ std::unique_ptr<pbf::PbfSolver> makeSolver(const pbf::Scene& scene);
 struct RunTotals {
   double sim_seconds = 0.0;
   double step_wall_seconds = 0.0;  // sum of the solver's own step times (wall clock)
+  // Process CPU time over the run (all threads): less sensitive than wall time to other
+  // processes on a shared machine, so both are reported.
+  double cpu_seconds = 0.0;
   long long steps = 0;
   long long iterations = 0;       // summed over steps
   int nan_retries = 0;
   bool failed = false;             // a step failed even at the smallest dt
   double wallPerSimSecond() const { return sim_seconds > 0 ? step_wall_seconds / sim_seconds : 0.0; }
+  double cpuPerSimSecond() const { return sim_seconds > 0 ? cpu_seconds / sim_seconds : 0.0; }
 };
 
 using StepObserver = std::function<void(const pbf::PbfSolver&, const pbf::StepStats&)>;

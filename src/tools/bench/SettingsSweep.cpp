@@ -77,6 +77,12 @@ std::vector<Setting> settings(bool quick) {
   add("dt1/240_iter3", "combo", [](pbf::SolverParams& p) { fixedIterations(p, 3); fixedDt(p, 1.0f / 240); });
   add("dt1/240_tol0.005", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.005f); fixedDt(p, 1.0f / 240); });
   add("cfl0.4_max1/240_iter4", "combo", [](pbf::SolverParams& p) { fixedIterations(p, 4); cfl(p, 0.4f, 1.0f / 240); });
+  // Candidates for the shipped defaults: CFL with a shorter max dt (the hydrostatic error
+  // is set by the resting step g dt^2) and a few iterations or a tolerance.
+  add("cfl0.4_max1/360_iter4", "combo", [](pbf::SolverParams& p) { fixedIterations(p, 4); cfl(p, 0.4f, 1.0f / 360); });
+  add("cfl0.4_max1/240_iter6", "combo", [](pbf::SolverParams& p) { fixedIterations(p, 6); cfl(p, 0.4f, 1.0f / 240); });
+  add("cfl0.4_max1/240_tol0.003", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.4f, 1.0f / 240); });
+  add("cfl0.4_max1/180_tol0.003", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.4f, 1.0f / 180); });
   // Resolution at the provisional defaults.
   add("d0.04", "resolution", [](pbf::SolverParams&) {}, 0.04f);
   add("d0.028", "resolution", [](pbf::SolverParams&) {}, 0.028f);
@@ -123,13 +129,14 @@ void runSettingsSweep(const BenchOptions& o) {
                  "hydro_particles", "hydro_wall_per_sim", "hydro_mean_iterations", "hydro_avg_err",
                  "hydro_max_err", "hydro_height_loss", "hydro_speed_max", "hydro_speed_rms",
                  "dam_particles", "dam_wall_per_sim", "dam_mean_iterations", "dam_rms_no_shift",
-                 "dam_shift", "dam_rms_shifted", "dam_deviation"});
+                 "dam_shift", "dam_rms_shifted", "dam_deviation", "hydro_cpu_per_sim", "dam_cpu_per_sim"});
   csv.row({std::string("reference"), std::string("reference"), double(kSweepSpacing),
            (long long)ref_scene.solver.min_iterations, (long long)ref_scene.solver.max_iterations, 0.0,
            0LL, 0.0, 0.0, double(ref_scene.solver.time_step), 0LL, NAN, NAN, NAN, NAN, NAN, NAN, NAN,
            (long long)reference.particles, reference.totals.wallPerSimSecond(),
            double(reference.totals.iterations) / std::max(1LL, reference.totals.steps),
-           reference.rms_no_shift, reference.shift, reference.rms_shifted, 0.0});
+           reference.rms_no_shift, reference.shift, reference.rms_shifted, 0.0, NAN,
+           reference.totals.cpuPerSimSecond()});
 
   std::printf("%-26s %8s %8s %8s %8s %8s | %8s %8s %8s %8s\n", "setting", "h.wall/s", "avgErr%",
               "maxErr%", "loss%", "v_res", "d.wall/s", "RMS", "RMSsh", "dev");
@@ -153,7 +160,8 @@ void runSettingsSweep(const BenchOptions& o) {
              h.totals.wallPerSimSecond(), h.mean_iterations, h.avg_density_error, h.max_density_error,
              h.height_loss, h.residual_speed_max, h.residual_speed_rms, (long long)d.particles,
              d.totals.wallPerSimSecond(), double(d.totals.iterations) / std::max(1LL, d.totals.steps),
-             d.rms_no_shift, d.shift, d.rms_shifted, deviation});
+             d.rms_no_shift, d.shift, d.rms_shifted, deviation, h.totals.cpuPerSimSecond(),
+             d.totals.cpuPerSimSecond()});
     std::printf("%-26s %8.2f %8.3f %8.3f %8.2f %8.4f | %8.1f %8.3f %8.3f %8.3f%s\n", s.name.c_str(),
                 h.totals.wallPerSimSecond(), 100 * h.avg_density_error, 100 * h.max_density_error,
                 100 * h.height_loss, h.residual_speed_max, d.totals.wallPerSimSecond(), d.rms_no_shift,
