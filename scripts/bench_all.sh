@@ -7,7 +7,7 @@
 #
 #   OUT_DIR    where CSV, PNG, logs and summary.md go (default: bench_out)
 #   --quick    small, short versions of every study (minutes; to check the pipeline)
-#   --publish  also copy the PNGs, CSVs and summary.md into doc/validation/ (the README's)
+#   --publish  also copy the PNGs and the summary CSVs into doc/validation/ (the README's)
 # Full run: about 15 min on 2 quiet cores. Exit status 1 when a stress case fails.
 set -euo pipefail
 export PATH=/usr/bin:/bin:$PATH   # Debian's python3 with matplotlib, not a pyenv shim
@@ -46,7 +46,7 @@ nice -n 5 "$BIN/pbf_stress" --out "$OUT" "${STRESS[@]}" | tee "$OUT/pbf_stress.l
 if [ "$PUBLISH" = 1 ]; then
   DOC="$ROOT/doc/validation"
   mkdir -p "$DOC"
-  cp "$OUT"/*.png "$OUT"/summary.md "$DOC/"
+  cp "$OUT"/*.png "$DOC/"
   for f in dambreak_summary sweep scaling stress; do
     [ -f "$OUT/$f.csv" ] && cp "$OUT/$f.csv" "$DOC/"
   done
