@@ -113,7 +113,7 @@ SurfaceRenderThread::~SurfaceRenderThread() {
 void SurfaceRenderThread::onNewSubscriber() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    new_subscriber_ = true;
+    ++connections_;
   }
   wake_.notify_all();
 }
@@ -166,14 +166,14 @@ void SurfaceRenderThread::run() {
   // What was rendered last: a frame is rendered for a fluid that changed, new settings or a
   // new subscriber, never twice for the same state (a paused simulation costs nothing).
   FluidStateKey rendered_state;
-  std::uint64_t rendered_generation = 0;
+  std::uint64_t rendered_generation = 0, rendered_connections = 0;
   auto next_frame = SteadyClock::now();
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
     const SurfaceSettings settings = settings_;
     const std::uint64_t generation = settings_generation_;
     const bool configured = configured_;
-    const bool newcomer = new_subscriber_;
+    const std::uint64_t connections = connections_;
     lock.unlock();
 
     const int image_count = static_cast<int>(image_pub_.getNumSubscribers());
@@ -195,16 +195,13 @@ void SurfaceRenderThread::run() {
       const auto snapshot = snapshots_.latest();
       if (snapshot && !snapshot->positions.empty()) {
         const FluidStateKey state = fluidStateKey(*snapshot);
+        const bool newcomer = connections != rendered_connections;
         if (newcomer || !(state == rendered_state) || generation != rendered_generation) {
           if (generation != rendered_generation) renderer->setOptions(settings.options);
           renderAndPublish(*renderer, *snapshot, settings, image_count > 0, depth_count > 0);
           rendered_state = state;
           rendered_generation = generation;
-          if (newcomer) {
-            lock.lock();
-            new_subscriber_ = false;
-            lock.unlock();
-          }
+          rendered_connections = connections;
           // At most render_rate frames per second; a slow frame is not made up for.
           next_frame += std::chrono::duration_cast<SteadyClock::duration>(
               std::chrono::duration<double>(1.0 / std::max(settings.rate, 1e-3)));
@@ -218,7 +215,7 @@ void SurfaceRenderThread::run() {
     if (wake <= now) wake = now + kSnapshotPoll;
     lock.lock();
     wake_.wait_until(lock, wake, [&] {
-      return stop_ || settings_generation_ != generation || (new_subscriber_ && !newcomer);
+      return stop_ || settings_generation_ != generation || connections_ != connections;
     });
   }
   lock.unlock();

@@ -87,7 +87,7 @@ class SurfaceRenderThread {
   std::condition_variable wake_;
   bool stop_ = false;
   bool configured_ = false;
-  bool new_subscriber_ = false;        // someone connected since the last frame
+  std::uint64_t connections_ = 0;      // subscribers that ever connected
   SurfaceSettings settings_;
   std::uint64_t settings_generation_ = 0;
   geometry_msgs::TransformStamped last_pose_;
