@@ -9,6 +9,7 @@
 // and <= E_kin,0 + E_pot,0 + N m g H at the end (bench/EnergyBound.h says why).
 // --reduced is the short matrix ctest runs. With --out, stress_energy.csv holds E_kin(t).
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -61,6 +62,13 @@ int main(int argc, char** argv) {
       for (const auto& c : cases) std::printf("%-30s %s\n", c.name.c_str(), c.setup.c_str());
       return 0;
     }
+    const bool any = std::any_of(cases.begin(), cases.end(), [&](const pbf_bench::StressCase& c) {
+      return only.empty() || c.name.find(only) != std::string::npos;
+    });
+    if (!any) {
+      std::cerr << "pbf_stress: no case matches '" << only << "' (see --list)\n";
+      return 2;
+    }
     std::unique_ptr<pbf_bench::CsvWriter> csv, energy;
     if (!out_dir.empty()) {
       std::filesystem::create_directories(out_dir);
@@ -101,10 +109,6 @@ int main(int argc, char** argv) {
       if (energy)
         for (std::size_t k = 0; k < r.trace_t.size(); ++k)
           energy->row({r.name, r.trace_t[k], r.trace_kinetic[k], r.bound});
-    }
-    if (run == 0) {
-      std::cerr << "pbf_stress: no case matches '" << only << "' (see --list)\n";
-      return 2;
     }
     std::printf("pbf_stress: %d of %d cases passed\n", run - failures, run);
     return failures ? 1 : 0;
