@@ -44,10 +44,15 @@ DamBreakResult runDamBreak(const pbf::Scene& scene, const FrontCurve& reference,
   const float d = scene.solver.particle_spacing;
   const double bin = r.a / 10.0;
   std::size_t next_profile = 0;
+  FrontCurve quarter_row, full_row;
   auto record = [&](const pbf::PbfSolver& s) {
     const double T = s.time() * t_scale;
     r.curve.T.push_back(T);
     r.curve.Z.push_back(surgeFront(s.positions(), d, scene.container) / r.a);
+    quarter_row.T.push_back(T);
+    quarter_row.Z.push_back(surgeFront(s.positions(), d, scene.container, 0.25) / r.a);
+    full_row.T.push_back(T);
+    full_row.Z.push_back(surgeFront(s.positions(), d, scene.container, 1.0) / r.a);
     if (next_profile < profileTimes().size() && T >= profileTimes()[next_profile] - 1e-9) {
       std::vector<double> h = heightProfile(s.positions(), d, scene.container, bin);
       for (double& v : h) v /= r.a;
@@ -61,6 +66,8 @@ DamBreakResult runDamBreak(const pbf::Scene& scene, const FrontCurve& reference,
   r.rms_no_shift = frontRms(r.curve, reference, 0.0, kFrontRmsTMax);
   r.shift = bestShift(r.curve, reference, kFrontRmsTMax, kMaxGateShift);
   r.rms_shifted = frontRms(r.curve, reference, r.shift, kFrontRmsTMax);
+  r.rms_no_shift_quarter_row = frontRms(quarter_row, reference, 0.0, kFrontRmsTMax);
+  r.rms_no_shift_full_row = frontRms(full_row, reference, 0.0, kFrontRmsTMax);
   return r;
 }
 
