@@ -13,7 +13,8 @@ PACKAGES=(
   libtf2-ros-dev libtf2-geometry-msgs-dev python3-tf2-ros
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libimage-transport-dev librostest-dev python3-rostest python3-rospy python3-roslaunch
-  python3-rosmsg python3-sensor-msgs python3-std-srvs python3-rosgraph-msgs
+  python3-rosmsg python3-sensor-msgs python3-std-srvs python3-rosgraph-msgs rosbash
+  python3-rostopic python3-rosservice
   # headless rendering
   libosmesa6-dev libegl-dev libgl-dev libgles-dev libpng-dev
   # plots, and looking at the demo like a user
