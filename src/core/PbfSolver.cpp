@@ -308,17 +308,17 @@ bool PbfSolver::predict(float dt) {
 
 void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
   const std::size_t n = order.size();
-  auto permute = [&](auto& v) {
-    using V = std::decay_t<decltype(v)>;
-    V tmp(n);
+  // Gather into reused scratch arrays and swap: no allocation on the per-step path.
+  auto permute = [&](auto& v, auto& scratch) {
+    scratch.resize(n);
 #pragma omp parallel for schedule(static)
-    for (std::size_t k = 0; k < n; ++k) tmp[k] = v[order[k]];
-    v.swap(tmp);
+    for (std::size_t k = 0; k < n; ++k) scratch[k] = v[order[k]];
+    v.swap(scratch);
   };
-  permute(position_);
-  permute(velocity_);
-  permute(predicted_);
-  permute(id_);
+  permute(position_, reorder_scratch_);
+  permute(velocity_, reorder_scratch_);
+  permute(predicted_, reorder_scratch_);
+  permute(id_, reorder_id_scratch_);
 }
 
 void PbfSolver::updateNeighbors(StepStats& stats) {

@@ -120,6 +120,9 @@ class PbfSolver {
   // Backups to reject a non-finite step.
   std::vector<Eigen::Vector3f> saved_position_, saved_velocity_;
   std::vector<std::uint32_t> saved_id_;
+  // Scratch for reorder() (swapped with the arrays it permutes).
+  std::vector<Eigen::Vector3f> reorder_scratch_;
+  std::vector<std::uint32_t> reorder_id_scratch_;
 
   std::unique_ptr<NeighborGrid> grid_;
   bool lists_valid_ = false;

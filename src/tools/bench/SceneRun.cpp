@@ -4,16 +4,13 @@
 #include <ctime>
 
 #include "bench/Progress.h"
+#include "pbf_ros/core/SceneSetup.h"
 
 namespace pbf_bench {
 
 std::unique_ptr<pbf::PbfSolver> makeSolver(const pbf::Scene& scene) {
-  std::vector<Eigen::Vector3f> x, v;
-  scene.initialParticles(x, v);
   auto solver = std::make_unique<pbf::PbfSolver>();
-  solver->setParams(scene.solver);
-  solver->setContainer(scene.container);
-  solver->setParticles(x, v);
+  pbf::setUpSolver(scene, *solver);  // parameters, container, obstacles, particles
   return solver;
 }
 
