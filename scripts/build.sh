@@ -14,7 +14,7 @@ echo "[pbf_ros] configuring in $BUILD"
 # time and only lists devel folders that already exist: without these, a first build gives
 # rostest an empty PYTHONPATH and the test nodes cannot import pbf_ros.msg.
 mkdir -p "$BUILD/devel/lib/python3/dist-packages"
-cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release > "$BUILD.configure.log" 2>&1 || {
-  cat "$BUILD.configure.log"; exit 1; }
+cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release > "$BUILD/configure.log" 2>&1 || {
+  cat "$BUILD/configure.log"; exit 1; }
 echo "[pbf_ros] building (make -j$(nproc))"
 make -C "$BUILD" -j"$(nproc)" --no-print-directory "$@"
