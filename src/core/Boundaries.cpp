@@ -1,45 +1,166 @@
 #include "pbf_ros/core/Boundaries.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace pbf {
+
+namespace {
+
+// One axis of an axis-aligned box of ghost lattice points, written as a signed sum of
+// half-lines: each term is a half-line beyond a plane at distance `arg` from the particle
+// (LatticeBoundary::octant's argument), with a sign, and d arg / d q along the axis.
+struct LineTerm {
+  float arg, sign, slope;
+};
+struct AxisTerms {
+  LineTerm term[3];
+  int count = 0;
+  void add(float arg, float sign, float slope) { term[count++] = {arg, sign, slope}; }
+};
+
+// sum over one term per axis of (product of signs) * T(args): the ghost sum over the
+// product of the per-axis sets (inclusion-exclusion), and its gradient in the box frame.
+// With skip_first, the combination of every axis's first term is left out.
+void sumOctants(const LatticeBoundary& lattice, const AxisTerms (&axes)[3], bool skip_first,
+                float& value, Eigen::Vector3f& gradient) {
+  value = 0.0f;
+  gradient.setZero();
+  for (int i = 0; i < axes[0].count; ++i)
+    for (int j = 0; j < axes[1].count; ++j)
+      for (int k = 0; k < axes[2].count; ++k) {
+        if (skip_first && i == 0 && j == 0 && k == 0) continue;
+        const LineTerm* t[3] = {&axes[0].term[i], &axes[1].term[j], &axes[2].term[k]};
+        float v;
+        Eigen::Vector3f dv;
+        if (!lattice.octant(Eigen::Vector3f(t[0]->arg, t[1]->arg, t[2]->arg), v, dv)) continue;
+        const float sign = t[0]->sign * t[1]->sign * t[2]->sign;
+        value += sign * v;
+        for (int a = 0; a < 3; ++a) gradient[a] += sign * dv[a] * t[a]->slope;
+      }
+}
+
+// How much of the kernel a convex surface with the given mean curvature radius covers,
+// relative to a flat wall at the same distance s (<= 1: a convex solid fills less of the
+// kernel than the half-space). Continuum ratio, applied to the lattice-calibrated flat
+// value; d kappa / ds by a central difference.
+float curvatureFactor(float s, float radius, float h, float& d_ds) {
+  auto kappa = [&](double t) {
+    t = std::max(t, 0.0);
+    const double flat = continuumHalfSpaceFraction(t, h);
+    return flat > 1e-12 ? continuumBallFraction(t, radius, h) / flat : 1.0;
+  };
+  const double e = 1e-3 * h;
+  d_ds = static_cast<float>((kappa(s + e) - kappa(s - e)) / (2.0 * e));
+  return static_cast<float>(kappa(s));
+}
+
+}  // namespace
 
 SolidBoundaries::SolidBoundaries(const Eigen::AlignedBox3f& container,
                                  const Eigen::Isometry3f& container_pose,
-                                 const std::vector<Obstacle>& obstacles, float support_radius,
-                                 float particle_radius)
+                                 const std::vector<Obstacle>& obstacles,
+                                 const LatticeBoundary& lattice, float particle_radius)
     : has_container_(!container.isEmpty()),
       posed_(!container_pose.isApprox(Eigen::Isometry3f::Identity(), 1e-7f)),
       box_(container),
       pose_(container_pose),
       inverse_(container_pose.inverse(Eigen::Isometry)),
       obstacles_(&obstacles),
-      walls_(container, support_radius),
-      h_(support_radius),
+      lattice_(&lattice),
+      reach_(lattice.reach()),
       radius_(particle_radius) {}
 
 bool SolidBoundaries::density(const Eigen::Vector3f& p, float& fraction,
                               Eigen::Vector3f& gradient) const {
   bool near = false;
   if (has_container_) {
-    if (!posed_) {
-      near = walls_.accumulate(p, fraction, gradient);
-    } else {
-      Eigen::Vector3f g_local = Eigen::Vector3f::Zero();
-      if (walls_.accumulate(inverse_ * p, fraction, g_local)) {
-        gradient += pose_.linear() * g_local;
-        near = true;
-      }
+    float f = 0.0f;
+    Eigen::Vector3f g;
+    if (containerDensity(posed_ ? Eigen::Vector3f(inverse_ * p) : p, f, g)) {
+      fraction += f;
+      gradient += posed_ ? Eigen::Vector3f(pose_.linear() * g) : g;
+      near = true;
     }
   }
   for (const Obstacle& o : *obstacles_) {
-    if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + h_, 2.0f)) continue;
-    Eigen::Vector3f n;
-    const float s = std::max(o.signedDistance(p, n), 0.0f);
-    if (s >= h_) continue;
-    fraction += walls_.fractionBeyond(s);
-    gradient -= walls_.planeMass(s) * n;  // density falls moving away along the normal
-    near = true;
+    if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + reach_, 2.0f)) continue;
+    const bool hit = o.shape == Obstacle::Shape::Box ? boxDensity(o, p, fraction, gradient)
+                                                      : curvedDensity(o, p, fraction, gradient);
+    near = near || hit;
   }
   return near;
+}
+
+// The ghost fluid of the container is everything outside the box: 1 minus the lattice
+// inside it. Inside, each axis is the whole line minus the half-lines beyond its two walls.
+bool SolidBoundaries::containerDensity(const Eigen::Vector3f& q, float& fraction,
+                                       Eigen::Vector3f& gradient) const {
+  AxisTerms axes[3];
+  bool near = false;
+  for (int a = 0; a < 3; ++a) {
+    axes[a].add(lattice_->fullLine(), 1.0f, 0.0f);
+    const float to_min = q[a] - box_.min()[a], to_max = box_.max()[a] - q[a];
+    if (to_min < reach_) axes[a].add(to_min, -1.0f, 1.0f), near = true;
+    if (to_max < reach_) axes[a].add(to_max, -1.0f, -1.0f), near = true;
+  }
+  if (!near) return false;
+  float inside_missing;
+  Eigen::Vector3f g;
+  sumOctants(*lattice_, axes, /*skip_first=*/true, inside_missing, g);
+  fraction = -inside_missing;
+  gradient = -g;
+  return true;
+}
+
+// A box obstacle is ghost fluid inside it: per axis, the half-line beyond the near face
+// minus the half-line beyond the far face (which matters for plates thinner than h).
+bool SolidBoundaries::boxDensity(const Obstacle& o, const Eigen::Vector3f& p, float& fraction,
+                                 Eigen::Vector3f& gradient) const {
+  const Eigen::Vector3f q = o.pose.inverse(Eigen::Isometry) * p;
+  const float d = lattice_->spacing();
+  AxisTerms axes[3];
+  for (int a = 0; a < 3; ++a) {
+    const float sign = q[a] < 0.0f ? -1.0f : 1.0f;
+    const float near_face = std::abs(q[a]) - o.half_extents[a];
+    if (near_face >= reach_) return false;
+    axes[a].add(near_face, 1.0f, sign);
+    const float layers = std::max(1.0f, std::round(2.0f * o.half_extents[a] / d));
+    if (near_face + layers * d < reach_) axes[a].add(near_face + layers * d, -1.0f, sign);
+  }
+  float f;
+  Eigen::Vector3f g;
+  sumOctants(*lattice_, axes, /*skip_first=*/false, f, g);
+  if (f == 0.0f) return false;
+  fraction += f;
+  gradient += o.pose.linear() * g;
+  return true;
+}
+
+// Spheres and capsules (and any other shape, by its signed distance): the flat-wall lattice
+// fraction at the distance s, times the curvature factor of the surface. A capsule's side
+// is a cylinder, whose mean curvature is that of a sphere of twice its radius; towards the
+// ends it blends into the hemispheres' over one support radius, so there is no jump.
+bool SolidBoundaries::curvedDensity(const Obstacle& o, const Eigen::Vector3f& p, float& fraction,
+                                    Eigen::Vector3f& gradient) const {
+  Eigen::Vector3f n;
+  const float s = o.signedDistance(p, n);
+  if (s >= reach_) return false;
+  float dflat;
+  const float flat = lattice_->halfSpace(s, dflat);
+  float kappa = 1.0f, dkappa = 0.0f;
+  if (o.shape == Obstacle::Shape::Sphere || o.shape == Obstacle::Shape::Capsule) {
+    float mean_radius = o.radius;
+    if (o.shape == Obstacle::Shape::Capsule) {
+      const float z = std::abs((o.pose.inverse(Eigen::Isometry) * p).z());
+      const float inward = std::clamp((o.half_length - z) / lattice_->reach(), 0.0f, 1.0f);
+      mean_radius = o.radius / (1.0f - 0.5f * inward);
+    }
+    kappa = curvatureFactor(s, mean_radius, lattice_->supportRadius(), dkappa);
+  }
+  fraction += flat * kappa;
+  gradient += (dflat * kappa + flat * dkappa) * n;
+  return true;
 }
 
 Eigen::Vector3f SolidBoundaries::project(const Eigen::Vector3f& p_in) const {
@@ -59,13 +180,12 @@ Eigen::Vector3f SolidBoundaries::project(const Eigen::Vector3f& p_in) const {
   return p;
 }
 
-bool SolidBoundaries::contact(const Eigen::Vector3f& p, Eigen::Vector3f& normal,
+bool SolidBoundaries::contact(const Eigen::Vector3f& p, float reach, Eigen::Vector3f& normal,
                               Eigen::Vector3f& surface_motion) const {
-  const float touch = radius_ * 1.02f;
   for (std::size_t k = 0; k < obstacles_->size(); ++k) {
     const Obstacle& o = (*obstacles_)[k];
-    if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + touch, 2.0f)) continue;
-    if (o.signedDistance(p, normal) > touch) continue;
+    if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + reach, 2.0f)) continue;
+    if (o.signedDistance(p, normal) > reach) continue;
     surface_motion = Eigen::Vector3f::Zero();
     if (prev_obstacles_ && k < prev_obstacles_->size())  // where this surface point was
       surface_motion = p - (*prev_obstacles_)[k] * (o.pose.inverse(Eigen::Isometry) * p);
@@ -75,8 +195,8 @@ bool SolidBoundaries::contact(const Eigen::Vector3f& p, Eigen::Vector3f& normal,
   const Eigen::Vector3f q = posed_ ? Eigen::Vector3f(inverse_ * p) : p;
   for (int a = 0; a < 3; ++a) {
     Eigen::Vector3f n_local = Eigen::Vector3f::Zero();
-    if (q[a] - box_.min()[a] <= touch) n_local[a] = 1.0f;
-    else if (box_.max()[a] - q[a] <= touch) n_local[a] = -1.0f;
+    if (q[a] - box_.min()[a] <= reach) n_local[a] = 1.0f;
+    else if (box_.max()[a] - q[a] <= reach) n_local[a] = -1.0f;
     else continue;
     normal = posed_ ? Eigen::Vector3f(pose_.linear() * n_local) : n_local;
     surface_motion = p - prev_container_ * q;

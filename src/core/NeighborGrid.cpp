@@ -3,6 +3,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
+#include <string>
 #include <numeric>
 #include <stdexcept>
 
@@ -123,6 +125,7 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
   offsets_.resize(n + 1);
   std::vector<std::vector<std::uint32_t>> buffers;
   std::vector<std::size_t> block_base;
+  std::atomic<bool> too_many{false};
 
 #pragma omp parallel
   {
@@ -142,7 +145,7 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
     std::vector<std::uint32_t> cand;
     std::vector<float> cx, cy, cz;
     std::size_t i = begin;
-    while (i < end) {
+    while (i < end && !too_many.load(std::memory_order_relaxed)) {
       const std::uint32_t dense = point_cell_[i];
       std::size_t cell_end = i + 1;
       while (cell_end < end && point_cell_[cell_end] == dense) ++cell_end;
@@ -184,17 +187,30 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
         }
         buf.resize(pos);
       }
+      if (buf.size() > kMaxPairs) too_many = true;
     }
 #pragma omp barrier
 #pragma omp single
     {
       for (int b = 0; b < nt; ++b) block_base[b + 1] = block_base[b] + buffers[b].size();
-      indices_.resize(block_base[nt]);
-      offsets_[n] = static_cast<std::uint32_t>(block_base[nt]);
+      if (block_base[nt] > kMaxPairs) too_many = true;
+      if (!too_many) {
+        indices_.resize(block_base[nt]);
+        offsets_[n] = static_cast<std::uint32_t>(block_base[nt]);
+      }
     }
-    std::copy(buf.begin(), buf.end(), indices_.begin() + block_base[t]);
-    const auto base = static_cast<std::uint32_t>(block_base[t]);
-    for (std::size_t i = begin; i < end; ++i) offsets_[i] += base;
+    if (!too_many) {
+      std::copy(buf.begin(), buf.end(), indices_.begin() + block_base[t]);
+      const auto base = static_cast<std::uint32_t>(block_base[t]);
+      for (std::size_t i = begin; i < end; ++i) offsets_[i] += base;
+    }
+  }
+  if (too_many) {
+    offsets_.assign(n + 1, 0);  // no lists rather than wrong ones
+    indices_.clear();
+    throw std::length_error("NeighborGrid: more than " + std::to_string(kMaxPairs) +
+                            " neighbour pairs (" + std::to_string(n) +
+                            " points packed far denser than a fluid)");
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
+#include "pbf_ros/core/LatticeBoundary.h"
 #include "pbf_ros/core/NeighborGrid.h"
 
 namespace pbf {
@@ -91,7 +92,9 @@ inline Eigen::Vector3f spikyGradientSafe(const Kernels& k, const Pair& p, std::u
 
 }  // namespace
 
-PbfSolver::PbfSolver() : grid_(std::make_unique<NeighborGrid>()) {}
+PbfSolver::PbfSolver()
+    : grid_(std::make_unique<NeighborGrid>()),
+      lattice_(std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius())) {}
 PbfSolver::~PbfSolver() = default;
 
 void PbfSolver::setParams(const SolverParams& params) {
@@ -101,6 +104,9 @@ void PbfSolver::setParams(const SolverParams& params) {
                               params.neighbor_skin != params_.neighbor_skin;
   params_ = params;
   if (radius_changed) lists_valid_ = false;
+  if (lattice_->spacing() != params_.particle_spacing ||
+      lattice_->supportRadius() != params_.supportRadius())
+    lattice_ = std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius());
 }
 
 void PbfSolver::setContainer(const Eigen::AlignedBox3f& box) {
@@ -190,6 +196,8 @@ StepStats PbfSolver::stepWith(float dt) {
   saved_position_ = position_;
   saved_velocity_ = velocity_;
   saved_id_ = id_;
+  saved_density_ = density_;
+  saved_neighbor_count_ = neighbor_count_;
   bool ok = false;
   for (int attempt = 0; attempt <= params_.max_nan_retries; ++attempt) {
     StepStats trial = stats;
@@ -202,6 +210,8 @@ StepStats PbfSolver::stepWith(float dt) {
     position_ = saved_position_;
     velocity_ = saved_velocity_;
     id_ = saved_id_;
+    density_ = saved_density_;
+    neighbor_count_ = saved_neighbor_count_;
     lists_valid_ = false;
     ++stats.nan_retries;
     dt *= 0.5f;
@@ -249,7 +259,11 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   if (!predicted_finite) return false;
 
   t = Clock::now();
-  updateNeighbors(stats);
+  try {
+    updateNeighbors(stats);
+  } catch (const std::length_error&) {
+    return false;  // more neighbour pairs than memory allows: reject, retry with less motion
+  }
   stats.times.neighbors_ms += msSince(t);
 
   // Constraint iterations. With a tolerance, the error measured by the lambda pass
@@ -261,28 +275,40 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
     float avg_error = 0.0f;
     computeLambdas(avg_error);
     if (!std::isfinite(avg_error)) return false;
+    if (iter == 0) stats.initial_density_error = avg_error;
     if (use_tolerance && iter >= params_.min_iterations && avg_error <= params_.density_tolerance)
       break;
     computeDeltas();
     applyDeltasAndBoundary();
     ++iter;
+    try {
+      keepListsValidFor(predicted_, stats);
+    } catch (const std::length_error&) {
+      return false;
+    }
   }
   stats.iterations = iter;
+  stats.grid_cells = grid_->cellCount();
   stats.times.solve_ms += msSince(t);
 
   t = Clock::now();
   updateVelocities(dt);
+  try {
+    keepListsValidFor(position_, stats);
+  } catch (const std::length_error&) {
+    return false;
+  }
   stats.times.other_ms += msSince(t);
 
   t = Clock::now();
   computeDensityAndVorticity();
-  if (params_.xsph_c > 0.0f || params_.vorticity_epsilon > 0.0f) applyViscosityAndVorticity(dt);
+  if (params_.xsph_viscosity > 0.0f || params_.vorticity_epsilon > 0.0f) applyViscosityAndVorticity(dt);
   stats.times.viscosity_vorticity_ms += msSince(t);
 
   t = Clock::now();
   enforceSpeedLimit(dt, stats);
   if (params_.vorticity_epsilon <= 0.0f) stats.skipped_stages.push_back("vorticity");
-  if (params_.xsph_c <= 0.0f) stats.skipped_stages.push_back("xsph");
+  if (params_.xsph_viscosity <= 0.0f) stats.skipped_stages.push_back("xsph");
   if (params_.scorr_k <= 0.0f) stats.skipped_stages.push_back("scorr");
   if (stats.neighbor_lists_reused) stats.skipped_stages.push_back("neighbor_search");
   if (use_tolerance && stats.iterations < params_.max_iterations)
@@ -338,15 +364,45 @@ void PbfSolver::updateNeighbors(StepStats& stats) {
       return;
     }
   }
+  rebuildNeighborLists(predicted_);
+}
+
+void PbfSolver::rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points) {
+  // The grid covers the fluid's own bounds, not the whole container: a small fluid in a
+  // large container costs what it costs in a small one. Clipped to the container (plus h),
+  // where strays outside it share the border cells: one far-away particle must not coarsen
+  // the grid for everyone.
+  const float radius = params_.supportRadius() * (1.0f + params_.neighbor_skin);
   Eigen::AlignedBox3f domain;
-  if (!container_.isEmpty())
+  for (const auto& p : points) domain.extend(p);
+  if (!container_.isEmpty()) {
+    Eigen::AlignedBox3f walls;
     for (int c = 0; c < 8; ++c)
-      domain.extend(container_pose_ * container_.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)));
-  if (!domain.isEmpty()) domain.extend(domain.min() - Eigen::Vector3f::Constant(h)).extend(domain.max() + Eigen::Vector3f::Constant(h));
-  reorder(grid_->build(predicted_, h + skin, domain));
-  grid_->findNeighbors(predicted_, h + skin);
-  if (skin > 0.0f) build_position_ = predicted_;
+      walls.extend(container_pose_ * container_.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)));
+    walls.extend(walls.min() - Eigen::Vector3f::Constant(radius)).extend(walls.max() + Eigen::Vector3f::Constant(radius));
+    domain = domain.intersection(walls);
+  }
+  reorder(grid_->build(points, radius, domain));
+  grid_->findNeighbors(points, radius);  // `points` is one of the arrays reorder() permuted
+  if (params_.neighbor_skin > 0.0f) build_position_ = points;
   lists_valid_ = true;
+}
+
+// Reused lists stay exact while every particle is within half the skin of where it was at
+// the build: then no pair closer than h now was farther than h + skin then. The solver's
+// corrections move particles too, so this is checked after each of them, not only once
+// per step; a particle that went too far triggers a rebuild right there.
+void PbfSolver::keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats) {
+  const float skin = params_.neighbor_skin * params_.supportRadius();
+  if (skin <= 0.0f) return;  // built once per step on the predicted positions (the seed)
+  const float limit2 = 0.25f * skin * skin;
+  float moved2 = 0.0f;
+#pragma omp parallel for reduction(max : moved2) schedule(static)
+  for (std::size_t i = 0; i < size(); ++i)
+    moved2 = std::max(moved2, (points[i] - build_position_[i]).squaredNorm());
+  if (moved2 < limit2) return;
+  rebuildNeighborLists(points);
+  ++stats.neighbor_rebuilds_in_step;
 }
 
 // The two hot passes below are written branch-free over raw float arrays so that the
@@ -375,7 +431,7 @@ void PbfSolver::computeLambdas(float& avg_error) {
   const float grad_scale = mass * inv_rho0;  // grad C = (m / rho0) grad W (eq 7 with mass)
   const float self_density = mass * k.poly6(0.0f);
   const bool unilateral = params_.unilateral_constraint;
-  const float eps = params_.cfm_epsilon;
+  const float eps = params_.cfmEpsilon();
   const float h = k.h, h2 = k.h2, poly6c = mass * k.poly6_coef;
   const float spiky = grad_scale * k.spiky_grad_coef;
   const float tiny2 = kCoincident * h2;
@@ -429,12 +485,82 @@ void PbfSolver::computeLambdas(float& avg_error) {
     density_[i] = rho;
     float c = rho * inv_rho0 - 1.0f;
     if (unilateral) c = std::max(c, 0.0f);
-    lambda_[i] = c == 0.0f ? 0.0f : -c / (sum_grad2 + gx * gx + gy * gy + gz * gz + eps);
+    const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
+    lambda_[i] = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
   }
   avg_error = static_cast<float>(
       deterministicSum(n, [&](std::size_t i) {
         return std::max(0.0, static_cast<double>(density_[i]) * inv_rho0 - 1.0);
       }) / std::max<std::size_t>(n, 1));
+}
+
+// s_corr = -k (W(r) / W(dq))^n h^2 (Macklin & Mueller eq 13; the seed's eq 11 lost the
+// parentheses). It is added to lambda_i + lambda_j, which carry units of m^2 here (with the
+// particle mass in grad C); the paper's unit-mass, unit-scale form has no such factor, so
+// h^2 makes k dimensionless: the push it causes is the same fraction of h at any resolution.
+struct PbfSolver::Scorr {
+  Scorr(const SolverParams& p, const Kernels& k, float dt)
+      : on(p.scorr_k > 0.0f),
+        h2(k.h2),
+        poly6_rel(on ? k.poly6_coef / k.poly6(std::pow(p.scorr_delta_q * k.h, 2.0f)) : 0.0f),
+        k_scaled(p.scorr_k * k.h2 * scorrTimeScale(dt)),
+        n(p.scorr_n),
+        n4(p.scorr_n == 4.0f),
+        max_shift2(std::pow(kMaxScorrShift * p.particle_spacing * scorrTimeScale(dt), 2.0f)) {}
+  // -k (W(r) / W(dq))^n h^2: added to lambda_i + lambda_j of the pair at distance^2 r2.
+  float operator()(float r2) const {
+    const float w = std::max(h2 - r2, 0.0f);
+    const float rel = poly6_rel * w * w * w;
+    return -k_scaled * (n4 ? (rel * rel) * (rel * rel) : std::pow(rel, n));
+  }
+  bool on;
+  float h2, poly6_rel, k_scaled, n;
+  bool n4;
+  float max_shift2;
+};
+
+// s_corr is an artificial pressure against clustering: it may nudge a particle by at most
+// kMaxScorrShift of the spacing per iteration (at the reference dt). Within that (k up to
+// ~1) it acts as Macklin & Mueller describe; beyond, it saturates instead of pumping energy
+// into the fluid (the stress suite's s_corr k = 10 case). Each particle gets the factor that
+// would bound its own push; a pair then uses the smaller factor of its two particles, so the
+// pair's pushes stay equal and opposite (momentum is conserved when the bound acts).
+void PbfSolver::computeScorrScales(const Scorr& scorr) {
+  const std::size_t n = size();
+  const std::uint32_t* off = grid_->offsets().data();
+  const std::uint32_t* nbr = grid_->indices().data();
+  const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
+  const float* G = pair_gradient_.data();
+  const float grad_scale = params_.particleMass() / params_.rest_density;
+  const float tiny2 = kCoincident * scorr.h2;
+  scorr_scale_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+    float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+    int coincident = 0;
+#pragma omp simd reduction(+ : sx, sy, sz, coincident)
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nbr[e];
+      const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
+      const float r2 = dx * dx + dy * dy + dz * dz;
+      const float g = scorr(r2) * G[e];
+      coincident += r2 <= tiny2 ? 1 : 0;
+      sx += g * dx;
+      sy += g * dy;
+      sz += g * dz;
+    }
+    Eigen::Vector3f push(sx, sy, sz);
+    if (coincident > 0) {  // rare: exact path with directions for coincident pairs
+      push.setZero();
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        push += scorr((predicted_[i] - predicted_[j]).squaredNorm()) * grad_scale * pairGradient(i, j);
+      }
+    }
+    const float len2 = push.squaredNorm();
+    scorr_scale_[i] = len2 > scorr.max_shift2 ? std::sqrt(scorr.max_shift2 / len2) : 1.0f;
+  }
 }
 
 void PbfSolver::computeDeltas() {
@@ -446,19 +572,11 @@ void PbfSolver::computeDeltas() {
   const float* L = lambda_.data();
   const float* G = pair_gradient_.data();  // (m / rho0) grad W / r, from the lambda pass
   const float grad_scale = params_.particleMass() / params_.rest_density;
-  const bool scorr = params_.scorr_k > 0.0f;
-  const float h2 = k.h2, tiny2 = kCoincident * h2;
-  // s_corr = -k (W(r) / W(dq))^n h^2 (Macklin & Mueller eq 13; the seed's eq 11 lost the
-  // parentheses). It is added to lambda_i + lambda_j, which carry units of m^2 here (with
-  // the particle mass in grad C); the paper's unit-mass, unit-scale form has no such
-  // factor, so h^2 makes k dimensionless: the push it causes is the same fraction of h at
-  // any resolution. With k = 0 the loop without it runs: no cost.
-  const float dq = params_.scorr_delta_q * k.h;
-  const float poly6_rel = scorr ? k.poly6_coef / k.poly6(dq * dq) : 0.0f;
-  const float scorr_k = params_.scorr_k * h2 * scorrTimeScale(current_dt_), scorr_n = params_.scorr_n;
-  const bool scorr_n4 = scorr_n == 4.0f;
-  const float max_scorr_shift2 =
-      std::pow(kMaxScorrShift * params_.particle_spacing * scorrTimeScale(current_dt_), 2.0f);
+  const float tiny2 = kCoincident * k.h2;
+  // With k = 0 the loop without s_corr runs: no cost.
+  const Scorr scorr(params_, k, current_dt_);
+  if (scorr.on) computeScorrScales(scorr);
+  const float* S = scorr.on ? scorr_scale_.data() : nullptr;
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
 
@@ -468,7 +586,7 @@ void PbfSolver::computeDeltas() {
     const float li = L[i];
     float dx_sum = 0.0f, dy_sum = 0.0f, dz_sum = 0.0f;
     int coincident = 0;
-    if (!scorr) {
+    if (!scorr.on) {
 #pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
         const std::uint32_t j = nbr[e];
@@ -480,50 +598,29 @@ void PbfSolver::computeDeltas() {
         dz_sum += g * dz;
       }
     } else {
-      float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // the s_corr part, kept apart to be bounded
-#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, sx, sy, sz, coincident)
+      const float si = S[i];
+#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
         const std::uint32_t j = nbr[e];
         const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
         const float r2 = dx * dx + dy * dy + dz * dz;
-        const float w = std::max(h2 - r2, 0.0f);
-        const float rel = poly6_rel * w * w * w;
-        const float s = scorr_n4 ? (rel * rel) * (rel * rel) : std::pow(rel, scorr_n);
-        const float g = (li + L[j]) * G[e];
-        const float gs = -scorr_k * s * G[e];
+        const float g = (li + L[j] + scorr(r2) * std::min(si, S[j])) * G[e];
         coincident += r2 <= tiny2 ? 1 : 0;
         dx_sum += g * dx;
         dy_sum += g * dy;
         dz_sum += g * dz;
-        sx += gs * dx;
-        sy += gs * dy;
-        sz += gs * dz;
       }
-      // s_corr is an artificial pressure against clustering: it may nudge a particle by
-      // at most kMaxScorrShift of the spacing per iteration (at the reference dt). Within
-      // that (k up to ~1) it acts as Macklin & Mueller describe; beyond, it saturates
-      // instead of pumping energy into the fluid (the stress suite's s_corr k = 10 case).
-      const float s_len2 = sx * sx + sy * sy + sz * sz;
-      const float scale = s_len2 > max_scorr_shift2 ? std::sqrt(max_scorr_shift2 / s_len2) : 1.0f;
-      dx_sum += scale * sx;
-      dy_sum += scale * sy;
-      dz_sum += scale * sz;
     }
     Eigen::Vector3f dp(dx_sum, dy_sum, dz_sum);
     if (coincident > 0) {  // rare: exact path with directions for coincident pairs
       dp.setZero();
-      Eigen::Vector3f shift = Eigen::Vector3f::Zero();  // s_corr part, bounded as above
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
         const std::uint32_t j = nbr[e];
-        const Eigen::Vector3f grad = grad_scale * pairGradient(i, j);
-        dp += (li + L[j]) * grad;
-        if (scorr) {
-          const float r2 = (predicted_[i] - predicted_[j]).squaredNorm();
-          shift -= scorr_k * std::pow(poly6_rel * std::pow(std::max(h2 - r2, 0.0f), 3.0f), scorr_n) * grad;
-        }
+        float factor = li + L[j];
+        if (scorr.on)
+          factor += scorr((predicted_[i] - predicted_[j]).squaredNorm()) * std::min(S[i], S[j]);
+        dp += factor * grad_scale * pairGradient(i, j);
       }
-      if (shift.squaredNorm() > max_scorr_shift2) shift *= std::sqrt(max_scorr_shift2 / shift.squaredNorm());
-      dp += shift;
     }
     delta_[i] = dp;
     if (walls && li != 0.0f) {  // lambda_i times the solids' part of grad_i C_i
@@ -537,7 +634,7 @@ void PbfSolver::computeDeltas() {
 SolidBoundaries PbfSolver::boundaries() const {
   // Particle centres stay half a spacing from every surface: sphere surfaces touch it,
   // and the initial lattice (first layer at d/2) is already in place.
-  SolidBoundaries solids(container_, container_pose_, obstacles_, params_.supportRadius(),
+  SolidBoundaries solids(container_, container_pose_, obstacles_, *lattice_,
                          0.5f * params_.particle_spacing);
   solids.setPreviousPoses(prev_container_pose_, &prev_obstacle_pose_);
   return solids;
@@ -554,19 +651,23 @@ void PbfSolver::updateVelocities(float dt) {
   const std::size_t n = size();
   const float inv_dt = 1.0f / dt;
   const SolidBoundaries solids = boundaries();
-  const float keep_sliding = 1.0f - params_.wall_friction;
-  const bool friction = params_.wall_friction > 0.0f;
+  const float friction = params_.wall_friction;
+  const float layer = params_.particle_spacing;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     // With zero iterations the prediction itself may have left the box.
     Eigen::Vector3f p = solids.project(predicted_[i]);
     Eigen::Vector3f normal, surface_motion;
-    if (friction && solids.contact(p, normal, surface_motion)) {
-      // Remove part of the sliding relative to the surface; the normal part is the
-      // projection's business.
+    if (friction > 0.0f && solids.contact(p, layer, normal, surface_motion)) {
+      // Wall shear tau = rho0 c_f |u_t| u_t acts on the layer of thickness d next to the
+      // surface: du_t/dt = -c_f |u_t| u_t / d. Backward Euler over the step gives
+      // u_t' = u_t / (1 + c_f |u_t| dt / d), in displacements (t = u_t dt) below: stable at
+      // any dt and converging to the same law as dt shrinks. The normal part of the motion
+      // is the projection's business.
       const Eigen::Vector3f rel = (p - position_[i]) - surface_motion;
       const Eigen::Vector3f tangential = rel - rel.dot(normal) * normal;
-      p -= (1.0f - keep_sliding) * tangential;
+      const float keep = 1.0f / (1.0f + friction * tangential.norm() / layer);
+      p -= (1.0f - keep) * tangential;
       p = solids.project(p);
     }
     velocity_[i] = (p - position_[i]) * inv_dt;
@@ -632,9 +733,9 @@ void PbfSolver::applyViscosityAndVorticity(float dt) {
   const auto& off = grid_->offsets();
   const auto& nbr = grid_->indices();
   const float mass = params_.particleMass();
-  const float c = params_.xsph_c;
+  const float c = params_.xsphCoefficient(dt);
   const bool vorticity = params_.vorticity_epsilon > 0.0f;
-  const float veps = params_.vorticity_epsilon;
+  const float veps = params_.vorticity_epsilon * k.h;  // f = epsilon h (N x omega)
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {

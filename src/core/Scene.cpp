@@ -106,14 +106,14 @@ const std::map<std::string, Setter>& solverSetters() {
     i("min_iterations", &SolverParams::min_iterations);
     i("max_iterations", &SolverParams::max_iterations);
     f("density_tolerance", &SolverParams::density_tolerance);
-    f("cfm_epsilon", &SolverParams::cfm_epsilon);
+    f("cfm_relaxation", &SolverParams::cfm_relaxation);
     b("unilateral_constraint", &SolverParams::unilateral_constraint);
     f("scorr_k", &SolverParams::scorr_k);
     f("scorr_n", &SolverParams::scorr_n);
     f("scorr_delta_q", &SolverParams::scorr_delta_q);
     b("wall_density", &SolverParams::wall_density);
     f("wall_friction", &SolverParams::wall_friction);
-    f("xsph_c", &SolverParams::xsph_c);
+    f("xsph_viscosity", &SolverParams::xsph_viscosity);
     f("vorticity_epsilon", &SolverParams::vorticity_epsilon);
     f("neighbor_skin", &SolverParams::neighbor_skin);
     i("max_nan_retries", &SolverParams::max_nan_retries);
@@ -130,6 +130,12 @@ void applySolverNode(const YAML::Node& node, const std::string& origin, const st
   for (const auto& kv : node) {
     const std::string k = kv.first.as<std::string>();
     const auto it = setters.find(k);
+    // Parameters whose old form depended on dt or spacing were replaced, not reinterpreted.
+    static const std::map<std::string, std::string> replaced = {
+        {"cfm_epsilon", "cfm_relaxation (dimensionless, relative to the constraint's scale)"},
+        {"xsph_c", "xsph_viscosity (a kinematic viscosity in m^2/s)"}};
+    if (const auto r = replaced.find(k); r != replaced.end())
+      throw SceneError(origin + ": solver parameter '" + prefix + k + "' was replaced by " + r->second);
     if (it == setters.end()) {
       std::string list;
       for (const auto& s : setters) list += (list.empty() ? "" : ", ") + s.first;

@@ -1,5 +1,8 @@
 #include "pbf_ros/core/SolverParams.h"
 
+#include "pbf_ros/core/LatticeBoundary.h"
+
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -8,6 +11,21 @@ namespace pbf {
 namespace {
 bool finite(float v) { return std::isfinite(v); }
 }  // namespace
+
+float SolverParams::particleMass() const {
+  const double d = particle_spacing;
+  return static_cast<float>(rest_density * d * d * d / latticeKernelSum(support_radius_factor));
+}
+
+float SolverParams::cfmEpsilon() const {
+  const double d = particle_spacing;
+  return static_cast<float>(cfm_relaxation * latticeGradientScale(support_radius_factor) / (d * d));
+}
+
+float SolverParams::xsphCoefficient(float dt) const {
+  const float h = supportRadius();
+  return std::min(22.0f * xsph_viscosity * dt / (h * h), 0.5f);
+}
 
 std::string SolverParams::validate() const {
   std::ostringstream err;
@@ -35,17 +53,17 @@ std::string SolverParams::validate() const {
     err << "iterations must satisfy 1 <= min_iterations <= max_iterations <= 1000 (got "
         << min_iterations << ", " << max_iterations << ")";
   if (err.tellp() == 0) nonNegative("density_tolerance", density_tolerance);
-  if (err.tellp() == 0) nonNegative("cfm_epsilon", cfm_epsilon);
+  if (err.tellp() == 0) nonNegative("cfm_relaxation", cfm_relaxation);
   if (err.tellp() == 0) nonNegative("scorr_k", scorr_k);
   if (err.tellp() == 0 && !(finite(scorr_n) && scorr_n >= 1.0f && scorr_n <= 16.0f))
     err << "scorr_n must be in [1, 16] (got " << scorr_n << ")";
   if (err.tellp() == 0 && !(finite(scorr_delta_q) && scorr_delta_q > 0.0f && scorr_delta_q < 1.0f))
     err << "scorr_delta_q must be in (0, 1) (fraction of h; got " << scorr_delta_q << ")";
-  if (err.tellp() == 0 && !(finite(xsph_c) && xsph_c >= 0.0f && xsph_c <= 1.0f))
-    err << "xsph_c must be in [0, 1] (got " << xsph_c << ")";
+  if (err.tellp() == 0 && !(finite(xsph_viscosity) && xsph_viscosity >= 0.0f && xsph_viscosity <= 1.0f))
+    err << "xsph_viscosity must be in [0, 1] m^2/s (got " << xsph_viscosity << ")";
   if (err.tellp() == 0) nonNegative("vorticity_epsilon", vorticity_epsilon);
-  if (err.tellp() == 0 && !(finite(wall_friction) && wall_friction >= 0.0f && wall_friction <= 1.0f))
-    err << "wall_friction must be in [0, 1] (got " << wall_friction << ")";
+  if (err.tellp() == 0 && !(finite(wall_friction) && wall_friction >= 0.0f && wall_friction <= 10.0f))
+    err << "wall_friction must be in [0, 10] (a friction coefficient; got " << wall_friction << ")";
   if (err.tellp() == 0 && !(finite(neighbor_skin) && neighbor_skin >= 0.0f && neighbor_skin <= 1.0f))
     err << "neighbor_skin must be in [0, 1] (fraction of h; got " << neighbor_skin << ")";
   if (err.tellp() == 0 && (max_nan_retries < 0 || max_nan_retries > 30))

@@ -23,14 +23,14 @@ void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
   c.min_iterations = p.min_iterations;
   c.max_iterations = p.max_iterations;
   c.density_tolerance = p.density_tolerance;
-  c.cfm_epsilon = p.cfm_epsilon;
+  c.cfm_relaxation = p.cfm_relaxation;
   c.unilateral_constraint = p.unilateral_constraint;
   c.wall_density = p.wall_density;
   c.wall_friction = p.wall_friction;
   c.scorr_k = p.scorr_k;
   c.scorr_n = p.scorr_n;
   c.scorr_delta_q = p.scorr_delta_q;
-  c.xsph_c = p.xsph_c;
+  c.xsph_viscosity = p.xsph_viscosity;
   c.vorticity_epsilon = p.vorticity_epsilon;
   c.neighbor_skin = p.neighbor_skin;
 }
@@ -52,14 +52,14 @@ pbf::SolverParams configToSolverParams(const FluidConfig& c, pbf::SolverParams b
   p.min_iterations = c.min_iterations;
   p.max_iterations = c.max_iterations;
   p.density_tolerance = static_cast<float>(c.density_tolerance);
-  p.cfm_epsilon = static_cast<float>(c.cfm_epsilon);
+  p.cfm_relaxation = static_cast<float>(c.cfm_relaxation);
   p.unilateral_constraint = c.unilateral_constraint;
   p.wall_density = c.wall_density;
   p.wall_friction = static_cast<float>(c.wall_friction);
   p.scorr_k = static_cast<float>(c.scorr_k);
   p.scorr_n = static_cast<float>(c.scorr_n);
   p.scorr_delta_q = static_cast<float>(c.scorr_delta_q);
-  p.xsph_c = static_cast<float>(c.xsph_c);
+  p.xsph_viscosity = static_cast<float>(c.xsph_viscosity);
   p.vorticity_epsilon = static_cast<float>(c.vorticity_epsilon);
   p.neighbor_skin = static_cast<float>(c.neighbor_skin);
   return p;

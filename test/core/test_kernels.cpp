@@ -88,49 +88,36 @@ TEST(Kernels, ConstraintGradientMatchesFiniteDifferenceOfC) {
 
 }  // namespace
 
-#include "pbf_ros/core/Boundaries.h"
+#include "pbf_ros/core/LatticeBoundary.h"
 
 namespace {
 
-// The wall's density fraction F(s) must equal the Poly6 kernel integrated over the
-// half-space beyond a plane at distance s, and the wall gradient must be dF/dp.
-TEST(WallDensity, FractionEqualsKernelIntegralBeyondThePlaneAndGradientIsItsDerivative) {
-  const float h = 0.04f;
-  const pbf::Kernels k(h);
-  const Eigen::AlignedBox3f box(Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(1, 1, 1));
-  const pbf::BoxWallDensity walls(box, h);
-  EXPECT_NEAR(walls.fractionBeyond(0.0f), 0.5, 1e-4);
-  EXPECT_EQ(walls.fractionBeyond(h), 0.0f);
-  for (float s : {0.005f, 0.01f, 0.02f, 0.035f}) {
-    // Numerical integral over z in [s, h] of the kernel's mass in each plane.
-    const int n = 4000;
-    double f = 0.0;
-    for (int a = 0; a < n; ++a) {
-      const double z = s + (a + 0.5) * (h - s) / n;
-      // plane integral of Poly6 at height z: int_0^sqrt(h^2-z^2) W 2 pi rho d rho
-      const int m = 400;
-      const double rmax = std::sqrt(h * h - z * z);
-      double plane = 0.0;
-      for (int b = 0; b < m; ++b) {
-        const double rho = (b + 0.5) * rmax / m;
-        plane += k.poly6(float(rho * rho + z * z)) * 2.0 * kPi * rho * (rmax / m);
-      }
-      f += plane * (h - s) / n;
+// The continuum fractions the curvature correction uses: a ball's must equal the Poly6
+// kernel integrated over the ball (numerically here), and tend to the half-space's (whose
+// value at the plane is 1/2) as the radius grows.
+TEST(WallDensity, ContinuumBallAndHalfSpaceFractionsAreKernelIntegrals) {
+  const double h = 0.04;
+  const pbf::Kernels k(static_cast<float>(h));
+  EXPECT_NEAR(pbf::continuumHalfSpaceFraction(0.0, h), 0.5, 1e-9);
+  EXPECT_EQ(pbf::continuumHalfSpaceFraction(h, h), 0.0);
+  for (double radius : {0.02, 0.08, 0.5})
+    for (double s : {0.0, 0.01, 0.025}) {
+      // Midpoint rule over a grid covering the kernel's support.
+      const int n = 80;
+      const double step = 2.0 * h / n;
+      double integral = 0.0;
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+          for (int c = 0; c < n; ++c) {
+            const Eigen::Vector3d x(-h + (a + 0.5) * step, -h + (b + 0.5) * step, -h + (c + 0.5) * step);
+            // Ball centre at distance radius + s from the particle (origin), along +z.
+            if ((x - Eigen::Vector3d(0, 0, radius + s)).norm() > radius) continue;
+            integral += k.poly6(static_cast<float>(x.squaredNorm())) * step * step * step;
+          }
+      EXPECT_NEAR(pbf::continuumBallFraction(s, radius, h), integral, 3e-3)
+          << "radius " << radius << " s " << s;
     }
-    EXPECT_NEAR(walls.fractionBeyond(s), f, 2e-4) << "s = " << s;
-    // Particle at distance s from the floor (z = s), far from the other walls.
-    float frac = 0.0f;
-    Eigen::Vector3f grad = Eigen::Vector3f::Zero();
-    ASSERT_TRUE(walls.accumulate(Eigen::Vector3f(0.5f, 0.5f, s), frac, grad));
-    EXPECT_NEAR(frac, walls.fractionBeyond(s), 1e-6);
-    const float ds = 1e-4f;
-    const double fd = (walls.fractionBeyond(s + ds) - walls.fractionBeyond(s - ds)) / (2 * ds);
-    EXPECT_NEAR(grad.z(), fd, 1e-2 * std::abs(fd) + 1e-3);
-    EXPECT_EQ(grad.x(), 0.0f);
-  }
-  float frac = 0.0f;
-  Eigen::Vector3f grad = Eigen::Vector3f::Zero();
-  EXPECT_FALSE(walls.accumulate(Eigen::Vector3f(0.5f, 0.5f, 0.5f), frac, grad));
+  EXPECT_NEAR(pbf::continuumBallFraction(0.01, 1e4, h), pbf::continuumHalfSpaceFraction(0.01, h), 1e-6);
 }
 
 }  // namespace

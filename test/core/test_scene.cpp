@@ -47,7 +47,9 @@ TEST(Scene, DefaultsAreSI) {
   const pbf::Scene s = pbf::loadSceneFile(kScenes + "/hydrostatic_tank.yaml");
   EXPECT_FLOAT_EQ(s.solver.rest_density, 1000.0f);
   EXPECT_FLOAT_EQ(s.solver.supportRadius(), 2.0f * s.solver.particle_spacing);
-  EXPECT_FLOAT_EQ(s.solver.particleMass(), 1000.0f * std::pow(s.solver.particle_spacing, 3.0f));
+  // Calibrated to the start lattice: rho0 d^3 / 1.0098 for h = 2d (LatticeBoundary.h).
+  EXPECT_NEAR(s.solver.particleMass(), 1000.0f * std::pow(s.solver.particle_spacing, 3.0f) / 1.0097752f,
+              1e-6 * s.solver.particleMass());
   EXPECT_FLOAT_EQ(s.solver.gravity.z(), -9.81f);
 }
 
@@ -63,7 +65,7 @@ TEST(Scene, BadFilesNameFileKeyAndExpectation) {
       {base + "fluid: [{box: {min: [0,0,0], max: [2,1,1]}}]", "fluid[0] reaches outside the container"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph: 0.1}", "unknown solver parameter 'solver.xsph'"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {max_iterations: many}", "key 'solver.max_iterations': expected an integer"},
-      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph_c: 5}", "xsph_c must be in [0, 1]"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph_viscosity: 5}", "xsph_viscosity must be in [0, 1]"},
       {"fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]", "key 'container': expected to be present"},
       {"[1, 2", "not valid YAML"},
   };
@@ -87,10 +89,10 @@ TEST(Scene, UnknownSceneNameListsTheKnownOnes) {
 
 TEST(Scene, SolverYamlIsAllOrNothing) {
   pbf::SolverParams p;
-  EXPECT_THROW(pbf::applySolverYaml("{xsph_c: 0.2, max_iterations: -3}", "params", p), pbf::SceneError);
-  EXPECT_FLOAT_EQ(p.xsph_c, pbf::SolverParams().xsph_c);
-  pbf::applySolverYaml("{xsph_c: 0.2, gravity: [0, 0, -1]}", "params", p);
-  EXPECT_FLOAT_EQ(p.xsph_c, 0.2f);
+  EXPECT_THROW(pbf::applySolverYaml("{xsph_viscosity: 0.002, max_iterations: -3}", "params", p), pbf::SceneError);
+  EXPECT_FLOAT_EQ(p.xsph_viscosity, pbf::SolverParams().xsph_viscosity);
+  pbf::applySolverYaml("{xsph_viscosity: 0.002, gravity: [0, 0, -1]}", "params", p);
+  EXPECT_FLOAT_EQ(p.xsph_viscosity, 0.002f);
   EXPECT_FLOAT_EQ(p.gravity.z(), -1.0f);
 }
 

@@ -105,14 +105,14 @@ TEST(SolverRobustness, NonFiniteParticlesAreRefusedWithTheirIndex) {
 TEST(SolverRobustness, BadParametersAreRefusedByNameAndOldOnesKept) {
   pbf::PbfSolver solver;
   pbf::SolverParams bad;
-  bad.xsph_c = NAN;
+  bad.xsph_viscosity = NAN;
   try {
     solver.setParams(bad);
     FAIL() << "NaN accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("xsph_c"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("xsph_viscosity"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(solver.params().xsph_c, pbf::SolverParams().xsph_c);
+  EXPECT_EQ(solver.params().xsph_viscosity, pbf::SolverParams().xsph_viscosity);
   bad = pbf::SolverParams();
   bad.min_iterations = 5;
   bad.max_iterations = 2;

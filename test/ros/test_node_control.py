@@ -32,7 +32,7 @@ class NodeControlTest(unittest.TestCase):
         # Every test starts from the default scene, running.
         self.reconfigure.update_configuration({
             'scene': 'dam_break', 'gravity_x': 0.0, 'gravity_y': 0.0, 'gravity_z': -9.81,
-            'xsph_c': self.defaults['xsph_c']})
+            'xsph_viscosity': self.defaults['xsph_viscosity']})
         self.assertTrue(self.pause(False).success)
 
     def _pause_and_reset(self):
@@ -41,8 +41,8 @@ class NodeControlTest(unittest.TestCase):
         self.assertTrue(response.success, response.message)
 
     def test_yaml_values_seed_the_server(self):
-        # node_control.test sets xsph_c 0.02 (the scene leaves it at the solver default).
-        self.assertAlmostEqual(self.defaults['xsph_c'], 0.02)
+        # node_control.test sets xsph_viscosity 0.002 (the scene leaves it at the solver default).
+        self.assertAlmostEqual(self.defaults['xsph_viscosity'], 0.002)
         self.assertAlmostEqual(self.defaults['particle_spacing'], 0.05)
 
     def test_reset_restores_the_initial_positions(self):
@@ -109,21 +109,21 @@ class NodeControlTest(unittest.TestCase):
 
     def test_viscosity_change_does_not_reset_the_fluid(self):
         before = self.stats.next(timeout=20.0, condition=lambda m: m.step_count > 20)
-        config = self.reconfigure.update_configuration({'xsph_c': 0.1})
-        self.assertAlmostEqual(config['xsph_c'], 0.1)
+        config = self.reconfigure.update_configuration({'xsph_viscosity': 0.001})
+        self.assertAlmostEqual(config['xsph_viscosity'], 0.001)
         after = self.stats.next(timeout=10.0)
         self.assertGreaterEqual(after.step_count, before.step_count)
         self.assertGreaterEqual(after.sim_time, before.sim_time)
         self.assertEqual(after.particle_count, before.particle_count)
 
     def test_scene_change_resets_the_fluid(self):
-        self.reconfigure.update_configuration({'xsph_c': 0.3})
+        self.reconfigure.update_configuration({'xsph_viscosity': 0.003})
         before = self.stats.next(timeout=20.0, condition=lambda m: m.step_count > 20)
         config = self.reconfigure.update_configuration({'scene': 'hydrostatic_tank'})
         self.assertEqual(config['scene'], 'hydrostatic_tank')
-        # What the user set (particle_spacing at start-up, xsph_c live) stays set.
+        # What the user set (particle_spacing at start-up, xsph_viscosity live) stays set.
         self.assertAlmostEqual(config['particle_spacing'], 0.05)
-        self.assertAlmostEqual(config['xsph_c'], 0.3)
+        self.assertAlmostEqual(config['xsph_viscosity'], 0.003)
         after = self.stats.next(timeout=10.0)
         self.assertNotEqual(after.particle_count, before.particle_count)
         self.assertLess(after.step_count, before.step_count)
@@ -156,9 +156,9 @@ class NodeControlTest(unittest.TestCase):
         self.assertGreater(after.sim_time, before.sim_time)
 
     def test_non_finite_values_are_refused_and_out_of_range_clamped(self):
-        config = self.reconfigure.update_configuration({'xsph_c': float('nan')})
-        self.assertTrue(math.isfinite(config['xsph_c']))
-        self.assertAlmostEqual(config['xsph_c'], self.defaults['xsph_c'])
+        config = self.reconfigure.update_configuration({'xsph_viscosity': float('nan')})
+        self.assertTrue(math.isfinite(config['xsph_viscosity']))
+        self.assertAlmostEqual(config['xsph_viscosity'], self.defaults['xsph_viscosity'])
         config = self.reconfigure.update_configuration({'gravity_z': -1.0e9})
         self.assertEqual(config['gravity_z'], -100.0)
         # dynamic_reconfigure's server clamps infinities to the range before the node sees

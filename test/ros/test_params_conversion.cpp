@@ -19,7 +19,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   pbf::SolverParams p;
   p.particle_spacing = 0.03f;
   p.gravity = Eigen::Vector3f(1.0f, -2.0f, -3.0f);
-  p.xsph_c = 0.2f;
+  p.xsph_viscosity = 0.002f;
   p.vorticity_epsilon = 0.05f;
   p.min_iterations = 3;
   p.max_iterations = 7;
@@ -34,7 +34,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   const pbf::SolverParams q = pbf_ros::configToSolverParams(c);
   EXPECT_FLOAT_EQ(q.particle_spacing, 0.03f);
   EXPECT_TRUE(q.gravity.isApprox(p.gravity));
-  EXPECT_FLOAT_EQ(q.xsph_c, 0.2f);
+  EXPECT_FLOAT_EQ(q.xsph_viscosity, 0.002f);
   EXPECT_FLOAT_EQ(q.vorticity_epsilon, 0.05f);
   EXPECT_EQ(q.min_iterations, 3);
   EXPECT_EQ(q.max_iterations, 7);
@@ -51,8 +51,8 @@ TEST(ParamsConversion, DefaultsMatchTheSolverDefaults) {
   const pbf::SolverParams from_cfg = pbf_ros::configToSolverParams(FluidConfig::__getDefault__());
   const pbf::SolverParams solver;
   EXPECT_FLOAT_EQ(from_cfg.particle_spacing, solver.particle_spacing);
-  EXPECT_FLOAT_EQ(from_cfg.xsph_c, solver.xsph_c);
-  EXPECT_FLOAT_EQ(from_cfg.cfm_epsilon, solver.cfm_epsilon);
+  EXPECT_FLOAT_EQ(from_cfg.xsph_viscosity, solver.xsph_viscosity);
+  EXPECT_FLOAT_EQ(from_cfg.cfm_relaxation, solver.cfm_relaxation);
   EXPECT_EQ(from_cfg.max_iterations, solver.max_iterations);
   EXPECT_TRUE(from_cfg.gravity.isApprox(solver.gravity));
   EXPECT_EQ(from_cfg.validate(), "");
@@ -60,14 +60,14 @@ TEST(ParamsConversion, DefaultsMatchTheSolverDefaults) {
 
 TEST(ParamsConversion, NonFiniteValuesAreRefusedAndTheValueInForceKept) {
   FluidConfig in_force = FluidConfig::__getDefault__();
-  in_force.xsph_c = 0.05;
+  in_force.xsph_viscosity = 0.0005;
   FluidConfig request = in_force;
-  request.xsph_c = std::numeric_limits<double>::quiet_NaN();
+  request.xsph_viscosity = std::numeric_limits<double>::quiet_NaN();
   request.gravity_x = std::numeric_limits<double>::infinity();
   const auto notes = pbf_ros::sanitizeConfig(request, in_force);
-  EXPECT_DOUBLE_EQ(request.xsph_c, 0.05);
+  EXPECT_DOUBLE_EQ(request.xsph_viscosity, 0.0005);
   EXPECT_DOUBLE_EQ(request.gravity_x, in_force.gravity_x);
-  EXPECT_TRUE(mentions(notes, "xsph_c"));
+  EXPECT_TRUE(mentions(notes, "xsph_viscosity"));
   EXPECT_TRUE(mentions(notes, "gravity_x"));
   EXPECT_TRUE(mentions(notes, "refused"));
 }
@@ -105,22 +105,22 @@ TEST(ParamsConversion, SaneConfigHasNoNotes) {
 TEST(ParamsConversion, OverlayCopiesOnlyTheNamedParameters) {
   FluidConfig user = FluidConfig::__getDefault__();
   user.particle_spacing = 0.05;
-  user.xsph_c = 0.3;
+  user.xsph_viscosity = 0.003;
   FluidConfig scene = FluidConfig::__getDefault__();
   scene.particle_spacing = 0.01;
-  scene.xsph_c = 0.0;
+  scene.xsph_viscosity = 0.0;
   pbf_ros::overlayParams(user, {"particle_spacing", "not_a_parameter"}, scene);
   EXPECT_DOUBLE_EQ(scene.particle_spacing, 0.05);
-  EXPECT_DOUBLE_EQ(scene.xsph_c, 0.0);
+  EXPECT_DOUBLE_EQ(scene.xsph_viscosity, 0.0);
 }
 
 TEST(ParamsConversion, ChangedParamsNamesExactlyTheDifferences) {
   FluidConfig a = FluidConfig::__getDefault__();
   FluidConfig b = a;
   EXPECT_TRUE(pbf_ros::changedParams(a, b).empty());
-  b.xsph_c = 0.5;
+  b.xsph_viscosity = 0.005;
   b.scene = "other";
   b.unilateral_constraint = !a.unilateral_constraint;
   EXPECT_EQ(pbf_ros::changedParams(a, b),
-            (std::set<std::string>{"xsph_c", "scene", "unilateral_constraint"}));
+            (std::set<std::string>{"xsph_viscosity", "scene", "unilateral_constraint"}));
 }

@@ -138,7 +138,7 @@ TEST(RenderCameraParams, FilterAndItsParametersReachTheOptions) {
 
 TEST(RenderCameraParams, SettingACameraPositionTurnsTheAutomaticCameraOff) {
   pbf_ros::FluidConfig config = pbf_ros::FluidConfig::__getDefault__();
-  EXPECT_FALSE(pbf_ros::applyCameraOverride({"render_rate", "xsph_c"}, config));
+  EXPECT_FALSE(pbf_ros::applyCameraOverride({"render_rate", "xsph_viscosity"}, config));
   EXPECT_TRUE(config.camera_auto);
   EXPECT_TRUE(pbf_ros::applyCameraOverride({"camera_look_at_z"}, config));
   EXPECT_FALSE(config.camera_auto);

@@ -27,6 +27,9 @@ class NeighborGrid {
   // CSR lists for the points of the last build, given in sorted order: neighbours of i
   // are indices()[offsets()[i] .. offsets()[i+1]), excluding i, every j with
   // |p_i - p_j| < radius, in ascending j. Requires radius <= cell_size.
+  // Throws std::length_error (leaving empty lists) beyond kMaxPairs entries, which bounds
+  // the memory (1 GiB) and keeps the 32-bit offsets from overflowing: a fluid has ~30-60
+  // neighbours per point, only a hostile state (thousands of points in one spot) gets there.
   void findNeighbors(const std::vector<Eigen::Vector3f>& sorted_points, float radius);
 
   const std::vector<std::uint32_t>& offsets() const { return offsets_; }
@@ -34,6 +37,8 @@ class NeighborGrid {
   std::size_t cellCount() const { return rank_.size(); }
 
   // Interleaves the low 21 bits of x, y, z (x in the lowest bit).
+  static constexpr std::size_t kMaxPairs = std::size_t(1) << 28;
+
   static std::uint64_t morton3(std::uint32_t x, std::uint32_t y, std::uint32_t z);
 
  private:

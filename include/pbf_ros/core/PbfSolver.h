@@ -18,6 +18,7 @@
 
 namespace pbf {
 
+class LatticeBoundary;
 class NeighborGrid;
 class SolidBoundaries;
 
@@ -82,8 +83,12 @@ class PbfSolver {
   bool attemptStep(float dt, StepStats& stats);
   bool predict(float dt);
   void updateNeighbors(StepStats& stats);
+  void rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points);
+  void keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats);
   void computeLambdas(float& avg_error);
+  struct Scorr;
   void computeDeltas();
+  void computeScorrScales(const Scorr& scorr);
   Eigen::Vector3f pairGradient(std::size_t i, std::uint32_t j) const;  // grad_i W, exact path
   void applyDeltasAndBoundary();
   void updateVelocities(float dt);
@@ -114,17 +119,21 @@ class PbfSolver {
   std::vector<Eigen::Vector3f> vorticity_;
   std::vector<Eigen::Vector3f> build_position_;  // positions at the last list build (skin)
   std::vector<float> lambda_;
+  std::vector<float> scorr_scale_;          // per particle bound of the s_corr push
   std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass
   std::vector<float> density_;
   std::vector<std::uint16_t> neighbor_count_;
-  // Backups to reject a non-finite step.
+  // Backups to reject a non-finite step: everything a step changes.
   std::vector<Eigen::Vector3f> saved_position_, saved_velocity_;
   std::vector<std::uint32_t> saved_id_;
+  std::vector<float> saved_density_;
+  std::vector<std::uint16_t> saved_neighbor_count_;
   // Scratch for reorder() (swapped with the arrays it permutes).
   std::vector<Eigen::Vector3f> reorder_scratch_;
   std::vector<std::uint32_t> reorder_id_scratch_;
 
   std::unique_ptr<NeighborGrid> grid_;
+  std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h
   bool lists_valid_ = false;
   float current_dt_ = 0.0f;  // dt of the attempt in progress (s_corr scales with it)
   double time_ = 0.0;

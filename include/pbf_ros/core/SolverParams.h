@@ -31,9 +31,13 @@ struct SolverParams {
   // Stop iterating once the average density error is below this (after min_iterations).
   // 0 means a fixed count: always max_iterations.
   float density_tolerance = 0.003f;
-  // Constraint force mixing epsilon of eq 6 [1/m^2]. Regularises lambda where the
-  // gradient sum vanishes (isolated particles).
-  float cfm_epsilon = 100.0f;
+  // Constraint force mixing (eq 6's epsilon), relative to the constraint's own scale:
+  // epsilon = cfm_relaxation * sum_j |grad_j C|^2 of a resting interior particle (which
+  // grows like 1/d^2), so a resting particle's lambda is softened by the same fraction,
+  // 1 / (1 + cfm_relaxation), at every spacing. Regularises lambda where the gradient sum
+  // vanishes (isolated particles). 0.1 is what the validated absolute epsilon = 100 m^-2
+  // amounted to at the default spacing of 0.02 m (it softened 30 % at 0.04 m, 4 % at 0.0126 m).
+  float cfm_relaxation = 0.1f;
   // C = max(rho/rho0 - 1, 0): only compression is corrected, so surface particles with
   // missing neighbours are not pulled together (no clumping). Off: the seed's C = rho/rho0 - 1.
   bool unilateral_constraint = true;
@@ -48,13 +52,25 @@ struct SolverParams {
   // beyond each wall, Boundaries.h). Off: the seed's clamp alone, under which the fluid
   // compacts against the walls.
   bool wall_density = true;
-  // Tangential friction at walls and obstacles: the fraction of a touching particle's
-  // sliding motion (relative to the surface) removed each step. 0 = free slip, 1 = no slip.
+  // Friction of walls and obstacles, as a dimensionless wall-friction coefficient c_f of the
+  // quadratic (bed) friction law tau = rho0 c_f |u_t| u_t (u_t: sliding velocity relative to
+  // the surface). It acts on the particles within one spacing of a surface (the layer that
+  // carries the wall's shear), integrated implicitly: the same physical law at every dt and
+  // spacing. 0 = free slip (the default: no physical argument here fixes a value; smooth
+  // channel beds have c_f ~ 0.002-0.005).
   float wall_friction = 0.0f;
 
   // --- velocity post-processing --------------------------------------------------------
-  float xsph_c = 0.01f;                // XSPH viscosity (eq 10); 0 disables it at no cost
-  float vorticity_epsilon = 0.0f;      // vorticity confinement; 0 disables it at no cost
+  // XSPH (eq 10) as a kinematic viscosity nu [m^2/s]: the seed's per-step coefficient is
+  // c = 22 nu dt / h^2 (the XSPH sum approximates h^2/22 times the Laplacian for Poly6), so
+  // the fluid's viscosity does not change with dt or spacing. Where c would exceed 0.5 (a
+  // coarse dt at a fine spacing) it is capped there, for stability: the only regime where
+  // the parameter cannot mean the same. 1.7e-4 m^2/s is the seed's c = 0.01 at the default
+  // dt = 1/240 s and h = 0.04 m. 0 disables it at no cost.
+  float xsph_viscosity = 1.7e-4f;
+  // Vorticity confinement f = epsilon h (N x omega) (Fedkiw et al. 2001: scaled by the
+  // resolution, so it only restores vorticity lost at the scale of h) [1/s]; 0 = off.
+  float vorticity_epsilon = 0.0f;
 
   // --- neighbour search ----------------------------------------------------------------
   // Lists are built with radius h * (1 + skin) and reused while every particle moved less
@@ -68,9 +84,14 @@ struct SolverParams {
   float max_speed_factor = 4.0f;
 
   float supportRadius() const { return support_radius_factor * particle_spacing; }
-  float particleMass() const {
-    return rest_density * particle_spacing * particle_spacing * particle_spacing;
-  }
+  // m = rho0 d^3 / (d^3 sum_lattice W): a particle of the cubic start lattice sits at
+  // exactly rho0 (rho0 d^3 would put it at 1.0098 rho0 for h = 2d, and a fresh scene would
+  // burst at t = 0).
+  float particleMass() const;
+  // epsilon of eq 6 [1/m^2] (cfm_relaxation times the resting constraint scale).
+  float cfmEpsilon() const;
+  // XSPH's per-step coefficient c for a step of dt.
+  float xsphCoefficient(float dt) const;
 
   // Empty when every value is usable; otherwise a message naming the first bad field.
   std::string validate() const;

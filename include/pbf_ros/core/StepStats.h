@@ -1,6 +1,7 @@
 #pragma once
 // What one solver step did and what it cost: the solver's answer to "what happened?".
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,7 +26,10 @@ struct StepStats {
   double kinetic_energy = 0.0;           // [J]
   int nan_retries = 0;                   // rejected attempts (non-finite values) this step
   bool failed = false;                   // no attempt succeeded: state left unchanged
+  double initial_density_error = 0.0;    // mean compression of the prediction, before the solve
   bool neighbor_lists_reused = false;
+  int neighbor_rebuilds_in_step = 0;
+  std::size_t grid_cells = 0;            // cells of the neighbour grid (it covers the fluid)     // skin exceeded by the corrections: lists rebuilt
   bool speed_limited = false;            // the max_speed_factor cap acted this step
   StageTimes times;
   std::vector<std::string> skipped_stages;  // e.g. "vorticity", "xsph", "scorr"
