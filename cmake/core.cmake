@@ -6,6 +6,8 @@ add_library(pbf_core
   src/core/Scene.cpp
   src/core/Metrics.cpp
   src/core/Obstacle.cpp
+  src/core/TriangleMesh.cpp
+  src/core/SignedDistanceGrid.cpp
   src/core/Boundaries.cpp)
 target_include_directories(pbf_core PUBLIC include)
 target_link_libraries(pbf_core PUBLIC Eigen3::Eigen OpenMP::OpenMP_CXX yaml-cpp)
