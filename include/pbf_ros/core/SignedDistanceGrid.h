@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "pbf_ros/core/TriangleMesh.h"
