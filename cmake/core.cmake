@@ -6,6 +6,8 @@ add_library(pbf_core
   src/core/Scene.cpp
   src/core/Metrics.cpp
   src/core/Obstacle.cpp
+  src/core/TriangleMesh.cpp
+  src/core/SignedDistanceGrid.cpp
   src/core/Boundaries.cpp
   src/core/LatticeBoundary.cpp)
 target_include_directories(pbf_core PUBLIC include)

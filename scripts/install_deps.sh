@@ -15,6 +15,8 @@ PACKAGES=(
   libimage-transport-dev librostest-dev python3-rostest python3-rospy python3-roslaunch
   python3-rosmsg python3-sensor-msgs python3-std-srvs python3-rosgraph-msgs rosbash
   python3-rostopic python3-rosservice
+  # robots as solids: URDF, and meshes through geometric_shapes (assimp); check_urdf
+  liburdf-dev libgeometric-shapes-dev liburdfdom-tools
   # headless rendering
   libosmesa6-dev libegl-dev libgl-dev libgles-dev libpng-dev
   # plots, and looking at the demo like a user

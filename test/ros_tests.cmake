@@ -27,3 +27,10 @@ add_rostest(test/attached_frames.test DEPENDENCIES pbf_node)
 add_rostest(test/missing_frame.test DEPENDENCIES pbf_node)
 add_rostest(test/surface_topics.test DEPENDENCIES pbf_node)
 add_rostest(test/surface_no_gl.test DEPENDENCIES pbf_node)
+
+# Robots as solids (pbf_robots): URDF strings and the shipped arm's meshes, no master.
+catkin_add_gtest(test_ros_urdf_solids test/ros/test_urdf_solids.cpp)
+if(TARGET test_ros_urdf_solids)
+  target_link_libraries(test_ros_urdf_solids pbf_robots gtest_main)
+  target_compile_definitions(test_ros_urdf_solids PRIVATE PBF_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+endif()

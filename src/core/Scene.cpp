@@ -186,8 +186,8 @@ Eigen::Isometry3f readPose(const YAML::Node& n, const std::string& origin, const
 }
 
 Obstacle readObstacle(const YAML::Node& n, const std::string& origin, const std::string& key) {
-  if (!n.IsMap()) fail(origin, key, "a map with 'box', 'sphere' or 'capsule'");
-  checkKeys(n, {"box", "sphere", "capsule", "frame"}, origin, key + ".");
+  if (!n.IsMap()) fail(origin, key, "a map with 'box', 'sphere', 'capsule' or 'cylinder'");
+  checkKeys(n, {"box", "sphere", "capsule", "cylinder", "frame"}, origin, key + ".");
   Obstacle o;
   int shapes = 0;
   if (const YAML::Node b = n["box"]) {
@@ -214,7 +214,16 @@ Obstacle readObstacle(const YAML::Node& n, const std::string& origin, const std:
                               key + ".capsule.half_length");
     ++shapes;
   }
-  if (shapes != 1) fail(origin, key, "exactly one of 'box', 'sphere', 'capsule'");
+  if (const YAML::Node c = n["cylinder"]) {
+    checkKeys(c, {"center", "radius", "half_length", "rpy"}, origin, key + ".cylinder.");
+    o.shape = Obstacle::Shape::Cylinder;
+    o.offset = readPose(c, origin, key + ".cylinder");
+    o.radius = readFloat(required(c, "radius", origin, key + ".cylinder.radius"), origin, key + ".cylinder.radius");
+    o.half_length = readFloat(required(c, "half_length", origin, key + ".cylinder.half_length"), origin,
+                              key + ".cylinder.half_length");
+    ++shapes;
+  }
+  if (shapes != 1) fail(origin, key, "exactly one of 'box', 'sphere', 'capsule', 'cylinder'");
   if (n["frame"]) {
     if (!n["frame"].IsScalar() || n["frame"].Scalar().empty()) fail(origin, key + ".frame", "a tf frame name");
     o.frame = n["frame"].Scalar();

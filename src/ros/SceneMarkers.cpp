@@ -119,6 +119,26 @@ void addObstacle(const pbf::Obstacle& o, const std::string& domain_frame, const 
       }
       break;
     }
+    case pbf::Obstacle::Shape::Cylinder: {
+      auto m = solid(visualization_msgs::Marker::CYLINDER);  // rviz's cylinder is along z too
+      m.scale.x = m.scale.y = 2.0 * o.radius;
+      m.scale.z = 2.0 * o.half_length;
+      array.markers.push_back(m);
+      break;
+    }
+    case pbf::Obstacle::Shape::Mesh: {
+      // The triangles the grid was built from, so the marker shows what the fluid meets.
+      auto m = solid(visualization_msgs::Marker::TRIANGLE_LIST);
+      m.scale.x = m.scale.y = m.scale.z = 1.0;
+      if (o.sdf) {
+        const pbf::TriangleMesh& mesh = o.sdf->mesh();
+        m.points.reserve(3 * mesh.triangles.size());
+        for (const Eigen::Vector3i& t : mesh.triangles)
+          for (int k = 0; k < 3; ++k) m.points.push_back(point(mesh.vertices[t[k]]));
+      }
+      array.markers.push_back(m);
+      break;
+    }
   }
 }
 }  // namespace

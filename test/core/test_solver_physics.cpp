@@ -118,10 +118,9 @@ TEST(SolverPhysics, PressureSolveConservesMomentumWithoutGravityAndWalls) {
   pbf::SolverParams p = freeSpaceParams();
   p.min_iterations = p.max_iterations = 4;
   p.unilateral_constraint = false;  // also pulls: both signs of lambda exercised
-  // The pressure solve alone: s_corr is pairwise antisymmetric too, but it is bounded per
-  // particle (PbfSolver.cpp, the stress suite's k = 10 case), and a saturated bound is
-  // deliberately not momentum-conserving.
-  p.scorr_k = 0.0f;
+  // s_corr at 100x the paper's k saturates its bound; a pair uses the smaller bound of its
+  // two particles, so even then its pushes are equal and opposite.
+  p.scorr_k = 10.0f;
   pbf::PbfSolver solver;
   solver.setParams(p);
   solver.setContainer(Eigen::AlignedBox3f());

@@ -57,3 +57,35 @@ TEST(SceneMarkers, AttachedContainerIsDrawnInItsFrame) {
   const auto array = pbf_ros::makeSceneMarkers(scene, "fluid_domain", ros::Time());
   EXPECT_EQ(array.markers[1].header.frame_id, "tank");
 }
+
+TEST(SceneMarkers, CylindersAndMeshesLookLikeWhatTheSolverUses) {
+  pbf::Scene scene = sceneWithObstacles();
+  pbf::Obstacle cylinder;
+  cylinder.shape = pbf::Obstacle::Shape::Cylinder;
+  cylinder.radius = 0.03f;
+  cylinder.half_length = 0.1f;
+  pbf::TriangleMesh tetra;  // a tetrahedron: 4 triangles
+  tetra.vertices = {{0, 0, 0}, {0.1f, 0, 0}, {0, 0.1f, 0}, {0, 0, 0.1f}};
+  tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  pbf::SignedDistanceGridOptions grid;
+  grid.cell = 0.01f;
+  grid.band = 0.02f;
+  pbf::Obstacle mesh;
+  mesh.shape = pbf::Obstacle::Shape::Mesh;
+  mesh.sdf = pbf::SignedDistanceGrid::build(tetra, grid);
+  mesh.frame = "gripper";
+  scene.obstacles = {cylinder, mesh};
+  const auto array = pbf_ros::makeSceneMarkers(scene, "fluid_domain", ros::Time());
+  std::vector<Marker> obstacles;
+  for (const auto& m : array.markers)
+    if (m.ns == "obstacles") obstacles.push_back(m);
+  ASSERT_EQ(obstacles.size(), 2u);
+  EXPECT_EQ(obstacles[0].type, Marker::CYLINDER);
+  EXPECT_FLOAT_EQ(obstacles[0].scale.x, 0.06f);
+  EXPECT_FLOAT_EQ(obstacles[0].scale.z, 0.2f);
+  EXPECT_EQ(obstacles[1].type, Marker::TRIANGLE_LIST);
+  EXPECT_EQ(obstacles[1].header.frame_id, "gripper");
+  ASSERT_EQ(obstacles[1].points.size(), 12u);
+  EXPECT_FLOAT_EQ(obstacles[1].points[11].z, 0.1f);  // the last triangle's last vertex
+  EXPECT_FLOAT_EQ(obstacles[1].scale.x, 1.0f);
+}

@@ -1,20 +1,29 @@
 #pragma once
-// Solid obstacles in the flow: boxes, spheres and capsules, static or moved each step (the
-// ROS layer attaches them to tf frames). Particles are kept out of them and, like the
-// container walls, get density from them (Boundaries.h), so they do not stick.
+// Solid obstacles in the flow: boxes, spheres, capsules, cylinders and triangle meshes
+// (through a signed distance grid built once at load), static or moved each step (the ROS
+// layer attaches them to tf frames: scene obstacles, or a robot's links). Particles are
+// kept out of them and, like the container walls, get density from them (Boundaries.h), so
+// they do not stick.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
+
+#include "pbf_ros/core/SignedDistanceGrid.h"
 
 namespace pbf {
 
 struct Obstacle {
-  enum class Shape { Box, Sphere, Capsule };
+  enum class Shape { Box, Sphere, Capsule, Cylinder, Mesh };
   Shape shape = Shape::Sphere;
   Eigen::Vector3f half_extents = Eigen::Vector3f::Constant(0.05f);  // Box [m]
-  float radius = 0.05f;       // Sphere, Capsule [m]
-  float half_length = 0.05f;  // Capsule: half the segment length, along its local z [m]
+  float radius = 0.05f;       // Sphere, Capsule, Cylinder [m]
+  // Capsule: half the segment length; Cylinder: half the length between its flat caps;
+  // both along the local z axis [m].
+  float half_length = 0.05f;
+  // Mesh: the solid's signed distance in its local frame, shared by copies (immutable).
+  std::shared_ptr<const SignedDistanceGrid> sdf;
   // tf frame the obstacle is attached to ("" = static in fluid_domain). With a frame,
   // `offset` is its pose in that frame; the node updates `pose` from tf every step.
   std::string frame;

@@ -1,0 +1,47 @@
+#pragma once
+// A robot's collision geometry as fluid solids: each <collision> of each selected URDF link
+// becomes an Obstacle attached to the link's tf frame at the collision origin (box, sphere,
+// cylinder; a mesh through a signed distance grid built here, once). Whatever cannot be
+// used is reported, naming the link and what was wrong, and the rest of the robot still
+// takes part. No ROS master is needed: the node passes the robot_description string.
+
+#include <string>
+#include <vector>
+
+#include "pbf_ros/core/Obstacle.h"
+#include "pbf_ros/core/SignedDistanceGrid.h"
+
+namespace pbf_ros {
+
+struct UrdfSolidsOptions {
+  // Which links take part. Both empty: every link with collision geometry. `links` names
+  // them (each must exist and have collision geometry); `link_regex` (ECMAScript, matched
+  // against the whole name) keeps only the links it matches.
+  std::vector<std::string> links;
+  std::string link_regex;
+  // Resolution and margin of mesh grids; the node uses cell = particle spacing / 2 and
+  // band = support radius + particle spacing.
+  pbf::SignedDistanceGridOptions sdf;
+};
+
+struct UrdfSolid {
+  std::string link;       // = obstacle.frame
+  std::string name;       // "<link>/<collision name>" or "<link>/collision_<i>"
+  std::string geometry;   // "box", "sphere", "cylinder" or "mesh '<uri>'"
+  pbf::Obstacle obstacle;  // frame = link, offset = collision origin, pose = offset
+};
+
+struct UrdfSolids {
+  std::string robot_name;
+  std::vector<UrdfSolid> solids;
+  // One line per problem, each naming the link (or the URDF) and what was wrong.
+  std::vector<std::string> problems;
+
+  std::vector<pbf::Obstacle> obstacles() const;
+  // Memory held by the mesh grids, a grid shared by several solids counted once [bytes].
+  std::size_t sdfBytes() const;
+};
+
+UrdfSolids urdfSolids(const std::string& urdf_xml, const UrdfSolidsOptions& options);
+
+}  // namespace pbf_ros

@@ -1,0 +1,203 @@
+#include "pbf_ros/ros/UrdfSolids.h"
+
+#include <urdf/model.h>
+
+#include <map>
+#include <memory>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "ConsoleBridgeCapture.h"
+#include "pbf_ros/ros/MeshResource.h"
+
+namespace pbf_ros {
+
+namespace {
+
+Eigen::Isometry3f isometry(const urdf::Pose& p) {
+  Eigen::Isometry3f t = Eigen::Isometry3f::Identity();
+  t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z).cast<float>();
+  t.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
+                   .normalized().toRotationMatrix().cast<float>();
+  return t;
+}
+
+// Mesh grids by file and scale: a mesh used by several links is read and gridded once,
+// and a file that failed is not tried again.
+class MeshGrids {
+ public:
+  explicit MeshGrids(const pbf::SignedDistanceGridOptions& options) : options_(options) {}
+
+  std::shared_ptr<const pbf::SignedDistanceGrid> get(const urdf::Mesh& m, std::string& error) {
+    std::ostringstream key;
+    key << m.filename << " " << m.scale.x << " " << m.scale.y << " " << m.scale.z;
+    auto found = cache_.find(key.str());
+    if (found == cache_.end()) found = cache_.emplace(key.str(), build(m)).first;
+    error = found->second.error;
+    return found->second.grid;
+  }
+
+ private:
+  struct Entry {
+    std::shared_ptr<const pbf::SignedDistanceGrid> grid;
+    std::string error;
+  };
+
+  Entry build(const urdf::Mesh& m) const {
+    Entry e;
+    pbf::TriangleMesh mesh;
+    if (!loadMeshResource(m.filename, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z), mesh, e.error))
+      return e;
+    try {
+      e.grid = pbf::SignedDistanceGrid::build(mesh, options_);
+    } catch (const std::invalid_argument& ex) {
+      e.error = std::string("cannot bound a solid: ") + ex.what();
+    }
+    return e;
+  }
+
+  pbf::SignedDistanceGridOptions options_;
+  std::map<std::string, Entry> cache_;
+};
+
+// The obstacle for one <collision>'s geometry; false, with `error`, when it is unusable.
+bool toObstacle(const urdf::Geometry& g, MeshGrids& meshes, pbf::Obstacle& o, std::string& geometry,
+                std::string& error) {
+  switch (g.type) {
+    case urdf::Geometry::BOX: {
+      const auto& b = static_cast<const urdf::Box&>(g);
+      o.shape = pbf::Obstacle::Shape::Box;
+      o.half_extents = 0.5f * Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z).cast<float>();
+      geometry = "box";
+      break;
+    }
+    case urdf::Geometry::SPHERE:
+      o.shape = pbf::Obstacle::Shape::Sphere;
+      o.radius = static_cast<float>(static_cast<const urdf::Sphere&>(g).radius);
+      geometry = "sphere";
+      break;
+    case urdf::Geometry::CYLINDER: {
+      const auto& c = static_cast<const urdf::Cylinder&>(g);
+      o.shape = pbf::Obstacle::Shape::Cylinder;  // both along z, centred on the origin
+      o.radius = static_cast<float>(c.radius);
+      o.half_length = static_cast<float>(0.5 * c.length);
+      geometry = "cylinder";
+      break;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& m = static_cast<const urdf::Mesh&>(g);
+      geometry = "mesh '" + m.filename + "'";
+      o.shape = pbf::Obstacle::Shape::Mesh;
+      o.sdf = meshes.get(m, error);
+      if (!o.sdf) return false;
+      break;
+    }
+    default:
+      error = "unknown geometry type";
+      return false;
+  }
+  error = o.validate();
+  return error.empty();
+}
+
+// The links that take part, in name order, with problems for what was asked but is missing.
+std::vector<urdf::LinkConstSharedPtr> selectLinks(const urdf::Model& model, const UrdfSolidsOptions& options,
+                                                  std::vector<std::string>& problems) {
+  std::unique_ptr<std::regex> pattern;
+  if (!options.link_regex.empty()) {
+    try {
+      pattern = std::make_unique<std::regex>(options.link_regex, std::regex::ECMAScript);
+    } catch (const std::regex_error& e) {
+      problems.push_back("link regex '" + options.link_regex + "' is not a valid regular expression (" +
+                         e.what() + "): no links selected");
+      return {};
+    }
+  }
+  auto matches = [&](const std::string& name) { return !pattern || std::regex_match(name, *pattern); };
+  std::vector<urdf::LinkConstSharedPtr> selected;
+  if (!options.links.empty()) {
+    std::set<std::string> seen;
+    for (const std::string& name : options.links) {
+      if (!seen.insert(name).second) continue;
+      const urdf::LinkConstSharedPtr link = model.getLink(name);
+      if (!link)
+        problems.push_back("link '" + name + "' is not in the URDF of robot '" + model.getName() + "'");
+      else if (link->collision_array.empty() && !link->collision)
+        problems.push_back("link '" + name + "' has no collision geometry");
+      else if (matches(name))
+        selected.push_back(link);
+    }
+    return selected;
+  }
+  for (const auto& [name, link] : model.links_)
+    if (!(link->collision_array.empty() && !link->collision) && matches(name)) selected.push_back(link);
+  if (selected.empty())
+    problems.push_back("no link of robot '" + model.getName() + "' has collision geometry" +
+                       (pattern ? " and matches '" + options.link_regex + "'" : std::string()));
+  return selected;
+}
+
+}  // namespace
+
+std::vector<pbf::Obstacle> UrdfSolids::obstacles() const {
+  std::vector<pbf::Obstacle> out;
+  out.reserve(solids.size());
+  for (const auto& s : solids) out.push_back(s.obstacle);
+  return out;
+}
+
+std::size_t UrdfSolids::sdfBytes() const {
+  std::set<const pbf::SignedDistanceGrid*> grids;
+  std::size_t bytes = 0;
+  for (const auto& s : solids)
+    if (s.obstacle.sdf && grids.insert(s.obstacle.sdf.get()).second) bytes += s.obstacle.sdf->memoryBytes();
+  return bytes;
+}
+
+UrdfSolids urdfSolids(const std::string& urdf_xml, const UrdfSolidsOptions& options) {
+  UrdfSolids out;
+  urdf::Model model;
+  {
+    ConsoleBridgeCapture log;
+    if (!model.initString(urdf_xml)) {
+      out.problems.push_back("the robot description is not a valid URDF" +
+                             (log.text().empty() ? std::string() : ": " + log.text()));
+      return out;
+    }
+  }
+  out.robot_name = model.getName();
+  if (const std::string err = options.sdf.validate(); !err.empty()) {
+    out.problems.push_back("mesh grid options: " + err + " (mesh links left out)");
+  }
+  MeshGrids meshes(options.sdf);
+  for (const urdf::LinkConstSharedPtr& link : selectLinks(model, options, out.problems)) {
+    std::vector<urdf::CollisionSharedPtr> collisions = link->collision_array;
+    if (collisions.empty() && link->collision) collisions.push_back(link->collision);
+    for (std::size_t i = 0; i < collisions.size(); ++i) {
+      const urdf::Collision& c = *collisions[i];
+      UrdfSolid solid;
+      solid.link = link->name;
+      solid.name = link->name + "/" + (c.name.empty() ? "collision_" + std::to_string(i) : c.name);
+      std::string error;
+      if (!c.geometry) {
+        out.problems.push_back("link '" + link->name + "' collision " + std::to_string(i) +
+                               " has no geometry: left out");
+        continue;
+      }
+      if (!toObstacle(*c.geometry, meshes, solid.obstacle, solid.geometry, error)) {
+        out.problems.push_back("link '" + link->name + "' collision " + std::to_string(i) + " (" +
+                               solid.geometry + "): " + error + "; left out");
+        continue;
+      }
+      solid.obstacle.frame = link->name;
+      solid.obstacle.offset = isometry(c.origin);
+      solid.obstacle.pose = solid.obstacle.offset;  // until tf says where the link is
+      out.solids.push_back(std::move(solid));
+    }
+  }
+  return out;
+}
+
+}  // namespace pbf_ros

@@ -1,0 +1,250 @@
+// urdfSolids: a robot's collision geometry as obstacles attached to its links, and a clear
+// message for each thing that cannot be used while the rest of the robot still takes part.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "pbf_ros/ros/MeshResource.h"
+#include "pbf_ros/ros/UrdfSolids.h"
+
+namespace {
+
+const std::string kSource = PBF_SOURCE_DIR;
+const std::string kCupStl = "file://" + kSource + "/urdf/meshes/cup.stl";
+
+std::string robot(const std::string& links) {
+  return "<?xml version=\"1.0\"?>\n<robot name=\"testbot\">\n" + links + "</robot>\n";
+}
+std::string link(const std::string& name, const std::string& collisions) {
+  return "<link name=\"" + name + "\">" + collisions + "</link>\n";
+}
+std::string collision(const std::string& geometry, const std::string& origin = "") {
+  return "<collision>" + origin + "<geometry>" + geometry + "</geometry></collision>";
+}
+std::string meshGeometry(const std::string& uri, const std::string& scale = "1 1 1") {
+  return "<mesh filename=\"" + uri + "\" scale=\"" + scale + "\"/>";
+}
+
+pbf_ros::UrdfSolidsOptions options() {
+  pbf_ros::UrdfSolidsOptions o;
+  o.sdf.cell = 0.005f;  // particle spacing 0.01 m
+  o.sdf.band = 0.03f;
+  return o;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string all;
+  for (const auto& l : lines) all += l + "\n";
+  return all;
+}
+
+const pbf_ros::UrdfSolid* find(const pbf_ros::UrdfSolids& s, const std::string& link) {
+  for (const auto& solid : s.solids)
+    if (solid.link == link) return &solid;
+  return nullptr;
+}
+
+TEST(UrdfSolids, PrimitivesBecomeObstaclesOnTheirLinkAtTheCollisionOrigin) {
+  const std::string urdf = robot(
+      link("base", collision("<box size=\"0.2 0.1 0.06\"/>", "<origin xyz=\"0.1 0 0.03\" rpy=\"0 0 1.5707963\"/>")) +
+      link("ball", collision("<sphere radius=\"0.04\"/>")) +
+      link("pole", collision("<cylinder radius=\"0.02\" length=\"0.3\"/>", "<origin xyz=\"0 0 0.15\"/>") +
+                       collision("<sphere radius=\"0.03\"/>", "<origin xyz=\"0 0 0.3\"/>")) +
+      link("no_collision", "") +
+      "<joint name=\"a\" type=\"fixed\"><parent link=\"base\"/><child link=\"ball\"/></joint>"
+      "<joint name=\"b\" type=\"fixed\"><parent link=\"base\"/><child link=\"pole\"/></joint>"
+      "<joint name=\"c\" type=\"fixed\"><parent link=\"base\"/><child link=\"no_collision\"/></joint>");
+  const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, options());
+  EXPECT_EQ(s.problems.size(), 0u) << joined(s.problems);
+  EXPECT_EQ(s.robot_name, "testbot");
+  ASSERT_EQ(s.solids.size(), 4u);  // base, ball, pole x 2; the link without collision is no solid
+  const auto* base = find(s, "base");
+  ASSERT_TRUE(base);
+  EXPECT_EQ(base->obstacle.shape, pbf::Obstacle::Shape::Box);
+  EXPECT_TRUE(base->obstacle.half_extents.isApprox(Eigen::Vector3f(0.1f, 0.05f, 0.03f)));
+  EXPECT_EQ(base->obstacle.frame, "base");
+  EXPECT_TRUE(base->obstacle.offset.translation().isApprox(Eigen::Vector3f(0.1f, 0.0f, 0.03f)));
+  // Turned a quarter about z: the box's long side lies along the link's y.
+  Eigen::Vector3f n;
+  EXPECT_NEAR(base->obstacle.signedDistance(Eigen::Vector3f(0.1f, 0.15f, 0.03f), n), 0.05f, 1e-5f);
+  EXPECT_TRUE(base->obstacle.pose.isApprox(base->obstacle.offset));
+  std::vector<const pbf_ros::UrdfSolid*> pole;
+  for (const auto& solid : s.solids)
+    if (solid.link == "pole") pole.push_back(&solid);
+  ASSERT_EQ(pole.size(), 2u);
+  EXPECT_EQ(pole[0]->obstacle.shape, pbf::Obstacle::Shape::Cylinder);
+  EXPECT_FLOAT_EQ(pole[0]->obstacle.half_length, 0.15f);
+  EXPECT_FLOAT_EQ(pole[0]->obstacle.radius, 0.02f);
+  EXPECT_EQ(pole[0]->name, "pole/collision_0");
+  EXPECT_EQ(pole[1]->name, "pole/collision_1");
+  EXPECT_EQ(pole[1]->obstacle.shape, pbf::Obstacle::Shape::Sphere);
+  EXPECT_EQ(s.obstacles().size(), 4u);
+  EXPECT_EQ(s.sdfBytes(), 0u);
+}
+
+std::string threeLinks() {
+  return robot(link("arm_1", collision("<sphere radius=\"0.04\"/>")) +
+               link("arm_2", collision("<sphere radius=\"0.04\"/>")) +
+               link("gripper", collision("<box size=\"0.1 0.1 0.1\"/>")) + link("empty", "") +
+               "<joint name=\"a\" type=\"fixed\"><parent link=\"arm_1\"/><child link=\"arm_2\"/></joint>"
+               "<joint name=\"b\" type=\"fixed\"><parent link=\"arm_2\"/><child link=\"gripper\"/></joint>"
+               "<joint name=\"c\" type=\"fixed\"><parent link=\"gripper\"/><child link=\"empty\"/></joint>");
+}
+
+TEST(UrdfSolids, LinksAreSelectedByListOrRegex) {
+  pbf_ros::UrdfSolidsOptions o = options();
+  o.link_regex = "arm_.*";
+  pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(threeLinks(), o);
+  EXPECT_EQ(s.problems.size(), 0u) << joined(s.problems);
+  ASSERT_EQ(s.solids.size(), 2u);
+  EXPECT_EQ(s.solids[0].link, "arm_1");
+  EXPECT_EQ(s.solids[1].link, "arm_2");
+
+  o.link_regex.clear();
+  o.links = {"gripper", "elbow", "empty", "arm_2"};
+  s = pbf_ros::urdfSolids(threeLinks(), o);
+  ASSERT_EQ(s.solids.size(), 2u);  // gripper and arm_2 still take part
+  EXPECT_EQ(s.solids[0].link, "gripper");
+  EXPECT_EQ(s.solids[1].link, "arm_2");
+  ASSERT_EQ(s.problems.size(), 2u) << joined(s.problems);
+  EXPECT_EQ(s.problems[0], "link 'elbow' is not in the URDF of robot 'testbot'");
+  EXPECT_EQ(s.problems[1], "link 'empty' has no collision geometry");
+
+  o.links.clear();
+  o.link_regex = "arm_[";
+  s = pbf_ros::urdfSolids(threeLinks(), o);
+  EXPECT_TRUE(s.solids.empty());
+  ASSERT_EQ(s.problems.size(), 1u);
+  EXPECT_NE(s.problems[0].find("link regex 'arm_[' is not a valid regular expression"), std::string::npos)
+      << s.problems[0];
+  o.link_regex = "leg_.*";
+  s = pbf_ros::urdfSolids(threeLinks(), o);
+  ASSERT_EQ(s.problems.size(), 1u);
+  EXPECT_EQ(s.problems[0], "no link of robot 'testbot' has collision geometry and matches 'leg_.*'");
+}
+
+TEST(UrdfSolids, AnUnparsableUrdfSaysWhy) {
+  pbf_ros::UrdfSolids s = pbf_ros::urdfSolids("<robot name=\"x\"><link name=\"a\">", options());
+  EXPECT_TRUE(s.solids.empty());
+  ASSERT_EQ(s.problems.size(), 1u);
+  EXPECT_NE(s.problems[0].find("the robot description is not a valid URDF: "), std::string::npos) << s.problems[0];
+  s = pbf_ros::urdfSolids(robot(link("a", collision("<sphere radius=\"0.1\"/>")) + link("a", "")), options());
+  ASSERT_EQ(s.problems.size(), 1u);
+  EXPECT_NE(s.problems[0].find("not a valid URDF"), std::string::npos);
+  EXPECT_NE(s.problems[0].find("'a'"), std::string::npos) << s.problems[0];  // the parser names the duplicate
+}
+
+TEST(UrdfSolids, AMeshLinkGetsAScaledSignedDistanceGridSharedWithItsTwins) {
+  const std::string urdf = robot(
+      link("cup", collision(meshGeometry(kCupStl, "2 2 2"), "<origin xyz=\"0 0 0.5\"/>")) +
+      link("cup_twin", collision(meshGeometry(kCupStl, "2 2 2"))) +
+      link("small_cup", collision(meshGeometry(kCupStl))) +
+      "<joint name=\"a\" type=\"fixed\"><parent link=\"cup\"/><child link=\"cup_twin\"/></joint>"
+      "<joint name=\"b\" type=\"fixed\"><parent link=\"cup\"/><child link=\"small_cup\"/></joint>");
+  const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, options());
+  EXPECT_EQ(s.problems.size(), 0u) << joined(s.problems);
+  ASSERT_EQ(s.solids.size(), 3u);
+  const auto *cup = find(s, "cup"), *twin = find(s, "cup_twin"), *small = find(s, "small_cup");
+  ASSERT_TRUE(cup && twin && small);
+  EXPECT_EQ(cup->obstacle.shape, pbf::Obstacle::Shape::Mesh);
+  EXPECT_EQ(cup->geometry, "mesh '" + kCupStl + "'");
+  EXPECT_EQ(cup->obstacle.sdf.get(), twin->obstacle.sdf.get());  // same file and scale: one grid
+  EXPECT_NE(cup->obstacle.sdf.get(), small->obstacle.sdf.get());
+  EXPECT_EQ(s.sdfBytes(), cup->obstacle.sdf->memoryBytes() + small->obstacle.sdf->memoryBytes());
+  // cup.stl: outer radius 5 cm, 9 cm tall, walls and bottom 1.2 cm; twice that here, and
+  // placed 0.5 m up its link.
+  const pbf::Obstacle& o = cup->obstacle;
+  EXPECT_EQ(o.sdf->mesh().openEdges(), 0u);  // read as one closed surface
+  EXPECT_NEAR(o.boundingRadius(), std::hypot(0.1f, 0.18f), 1e-4f);
+  Eigen::Vector3f n;
+  EXPECT_LT(o.signedDistance(Eigen::Vector3f(0.1f - 0.012f, 0.0f, 0.5f + 0.09f), n), -0.008f);  // in the wall
+  EXPECT_NEAR(o.signedDistance(Eigen::Vector3f(0.0f, 0.0f, 0.5f + 0.024f + 0.03f), n), 0.03f, 1e-4f);
+  EXPECT_GT(n.z(), 0.999f);  // the cavity's floor faces up
+  EXPECT_NEAR(o.signedDistance(Eigen::Vector3f(0.0f, 0.0f, 0.5f - 0.02f), n), 0.02f, 1e-4f);
+  EXPECT_LT(n.z(), -0.999f);
+}
+
+TEST(UrdfSolids, AMissingOrDegenerateMeshIsReportedAndTheRestStays) {
+  const std::string flat = "file://" + kSource + "/test/data/flat_square.stl";
+  const std::string urdf = robot(
+      link("base", collision("<box size=\"0.1 0.1 0.1\"/>")) +
+      link("lost", collision(meshGeometry("file:///nonexistent/lost.stl"))) +
+      link("flat", collision(meshGeometry(flat))) +
+      link("nowhere", collision(meshGeometry("package://no_such_package_xyz/m.stl"))) +
+      link("zero", collision("<sphere radius=\"0\"/>")) +
+      "<joint name=\"a\" type=\"fixed\"><parent link=\"base\"/><child link=\"lost\"/></joint>"
+      "<joint name=\"b\" type=\"fixed\"><parent link=\"base\"/><child link=\"flat\"/></joint>"
+      "<joint name=\"c\" type=\"fixed\"><parent link=\"base\"/><child link=\"nowhere\"/></joint>"
+      "<joint name=\"d\" type=\"fixed\"><parent link=\"base\"/><child link=\"zero\"/></joint>");
+  const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, options());
+  ASSERT_EQ(s.solids.size(), 1u);
+  EXPECT_EQ(s.solids[0].link, "base");
+  const std::string all = joined(s.problems);
+  std::printf("%s", all.c_str());
+  ASSERT_EQ(s.problems.size(), 4u) << all;
+  // In link name order: flat, lost, nowhere, zero.
+  EXPECT_NE(s.problems[0].find("link 'flat' collision 0 (mesh '" + flat +
+                               "'): cannot bound a solid: mesh encloses no volume"),
+            std::string::npos) << s.problems[0];
+  EXPECT_NE(s.problems[1].find("link 'lost' collision 0 (mesh 'file:///nonexistent/lost.stl'): cannot read mesh"),
+            std::string::npos) << s.problems[1];
+  EXPECT_NE(s.problems[2].find("link 'nowhere'"), std::string::npos) << s.problems[2];
+  EXPECT_NE(s.problems[2].find("no_such_package_xyz"), std::string::npos) << s.problems[2];
+  EXPECT_NE(s.problems[3].find("link 'zero' collision 0 (sphere): radius must be finite and > 0"),
+            std::string::npos) << s.problems[3];
+  for (const auto& p : s.problems) EXPECT_NE(p.find("left out"), std::string::npos) << p;
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(UrdfSolids, TheDemoArmLoadsWithEveryLinkAsASolid) {
+  // Resolve package://pbf_ros/ to this source tree without relying on ROS_PACKAGE_PATH.
+  const std::string urdf = std::regex_replace(readFile(kSource + "/urdf/pouring_arm.urdf"),
+                                              std::regex("package://pbf_ros/"), "file://" + kSource + "/");
+  ASSERT_FALSE(urdf.empty());
+  const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, options());
+  EXPECT_EQ(s.problems.size(), 0u) << joined(s.problems);
+  EXPECT_EQ(s.robot_name, "pouring_arm");
+  ASSERT_EQ(s.solids.size(), 5u);
+  for (const auto& solid : s.solids) {
+    EXPECT_EQ(solid.obstacle.validate(), "") << solid.name;
+    if (!solid.obstacle.sdf) continue;
+    const auto& g = *solid.obstacle.sdf;
+    EXPECT_EQ(g.mesh().openEdges(), 0u) << solid.name;
+    EXPECT_EQ(g.ambiguousNodes(), 0u) << solid.name;
+    std::printf("%-10s %-44s %4zu triangles, grid %3d x %3d x %3d, %7zu bytes\n", solid.link.c_str(),
+                solid.geometry.c_str(), g.mesh().triangles.size(), g.nodes().x(), g.nodes().y(), g.nodes().z(),
+                g.memoryBytes());
+  }
+  std::printf("all mesh grids: %zu bytes (cell %.4f m, band %.3f m)\n", s.sdfBytes(), options().sdf.cell,
+              options().sdf.band);
+  const auto* cup = find(s, "cup");
+  ASSERT_TRUE(cup);
+  Eigen::Vector3f n;  // water stands in the cup: its cavity is outside the solid
+  EXPECT_NEAR(cup->obstacle.signedDistance(Eigen::Vector3f(0.0f, 0.0f, 0.05f), n), 0.038f, 1e-3f);
+  // Mid-wall (1.2 cm thick) is its medial surface, where interpolation rounds the kink.
+  EXPECT_LT(cup->obstacle.signedDistance(Eigen::Vector3f(0.044f, 0.0f, 0.05f), n), -0.006f + 0.5f * 0.005f);
+}
+
+TEST(UrdfSolids, PackageUrisResolveThroughTheRosPackagePath) {
+  // The node reads package:// URIs; rospack finds this source tree by its package.xml.
+  setenv("ROS_PACKAGE_PATH", kSource.c_str(), 1);
+  pbf::TriangleMesh mesh;
+  std::string error;
+  ASSERT_TRUE(pbf_ros::loadMeshResource("package://pbf_ros/urdf/meshes/forearm.stl", Eigen::Vector3d::Ones(),
+                                        mesh, error))
+      << error;
+  EXPECT_EQ(mesh.triangles.size(), 32u);
+  EXPECT_EQ(mesh.validate(), "");
+}
+
+}  // namespace
