@@ -175,12 +175,10 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
   try {
     pbf::Scene next = scene;
     next.solver = params;
-    std::vector<Eigen::Vector3f> positions, velocities;
-    next.initialParticles(positions, velocities);
-    if (positions.size() > max_particles_) {
-      return "scene '" + next.name + "' needs " + std::to_string(positions.size()) +
-             " particles, more than ~max_particles (" + std::to_string(max_particles_) + ")";
-    }
+    // Counted before anything is allocated: a fine spacing must not take gigabytes first.
+    std::string why = next.validate();
+    if (why.empty()) why = next.checkParticleCount(max_particles_);
+    if (!why.empty()) return why;
     // A fresh solver: time and step count start again from 0; the old one keeps running
     // if anything below throws.
     auto fresh = std::make_unique<pbf::PbfSolver>();

@@ -35,6 +35,7 @@
 #include "pbf_ros/core/Scene.h"
 #include "pbf_ros/ros/FluidDiagnostics.h"
 #include "pbf_ros/ros/RealTimePacer.h"
+#include "pbf_ros/ros/ReconfigureRecord.h"
 #include "pbf_ros/ros/SimulationTasks.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
 #include "pbf_ros/ros/SurfaceRenderStatus.h"
@@ -68,6 +69,11 @@ class FluidNode {
   // Adds or replaces a transform on the node's one latched /tf_static publisher (any thread).
   void sendStaticTransform(const geometry_msgs::TransformStamped& transform);
 
+  // Called (on the spinner thread) when the master restarted and forgot this node; see
+  // watchMaster(). pbf_node shuts down and exits non-zero.
+  void setMasterLostHandler(std::function<void()> handler) { on_master_lost_ = std::move(handler); }
+  bool masterLost() const { return master_lost_; }
+
  private:
   using ReconfigureServer = dynamic_reconfigure::Server<FluidConfig>;
 
@@ -76,6 +82,7 @@ class FluidNode {
   FluidConfig startupConfig(const pbf::Scene& scene);
   void advertise();
   void startReconfigure(const FluidConfig& initial);
+  void watchMaster();  // wall timer, spinner thread
 
   // --- reconfigure (FluidNodeReconfigure.cpp); spinner thread ---
   void onReconfigure(FluidConfig& config, std::uint32_t level);
@@ -124,7 +131,11 @@ class FluidNode {
   std::mutex tf_static_mutex_;          // guards tf_static_ (sim thread, render settings)
   tf2_ros::StaticTransformBroadcaster tf_static_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
-  ros::WallTimer diagnostics_timer_;
+  ros::WallTimer diagnostics_timer_, master_timer_;
+  bool master_down_ = false;
+  std::atomic<bool> master_lost_{false};
+  std::function<void()> on_master_lost_;
+  ReconfigureRecord record_;  // parameters the user set vs. those a previous run left
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<ReconfigureServer> reconfigure_;
 
