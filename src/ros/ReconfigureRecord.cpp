@@ -3,7 +3,7 @@
 namespace pbf_ros {
 
 namespace {
-constexpr const char* kRecord = "_reconfigure_record";
+constexpr const char* kRecord = "reconfigure_record";
 }  // namespace
 
 ReconfigureRecord::ReconfigureRecord(const ros::NodeHandle& private_nh)

@@ -4,7 +4,7 @@
 // dynamic_reconfigure writes every value it serves into the node's private namespace. A
 // later node on the same master (a relaunch, a respawn, a rosrun) would read all of them as
 // set by the user: a scene's own `solver:` values would then never apply again. So the node
-// keeps a record beside them, under ~_reconfigure_record/:
+// keeps a record beside them, under ~reconfigure_record/:
 //   written/<name>  the values it last handed to the reconfigure server (so to the server);
 //   user/<name>     the values the user had set when the node started.
 // At the next start, a parameter whose value is still what the last run wrote was left
