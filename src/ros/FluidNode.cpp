@@ -81,6 +81,7 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   running_ = true;
   pacer_.restart(wallNow(), sim_clock_);
+  anchorStamps();
   sim_thread_ = std::thread(&FluidNode::runSimulation, this);
   reconfigure_live_ = true;
 }
@@ -157,7 +158,12 @@ FluidConfig FluidNode::startupConfig(const pbf::Scene& scene) {
 }
 
 void FluidNode::advertise() {
-  particles_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("particles", 2);
+  // A newcomer gets the current state even when it does not change (paused).
+  particles_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>(
+      "particles", 2, [this](const ros::SingleSubscriberPublisher&) {
+        cloud_wanted_ = true;
+        tasks_.wake();
+      });
   stats_pub_ = pnh_.advertise<SimulationStats>("stats", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);

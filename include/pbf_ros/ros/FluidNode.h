@@ -100,13 +100,15 @@ class FluidNode {
   void runSimulation();
   void stepOnce();
   void publishDue(double wall, bool force);
-  void publishCloud();
+  void publishCloud(bool force);
   void publishStats();
   void publishClock();
   // Replaces the fluid by the scene's initial state with `params`. "" or the error (the
   // running fluid is untouched then).
   std::string rebuildFluid(const pbf::Scene& scene, const pbf::SolverParams& params);
   void announceScene();  // markers + static tf
+  void seedAtCurrentPoses(const pbf::Scene& scene, pbf::PbfSolver& solver);
+  void anchorStamps();   // stamps continue from the ROS time now (start, resume, rebuild)
   void setRates(double publish_rate, double stats_rate);
   void updateHealth();
   ros::Time stamp() const;
@@ -159,6 +161,10 @@ class FluidNode {
   double publish_period_ = 1.0 / 30.0, stats_period_ = 0.1;
   double next_cloud_wall_ = 0.0, next_stats_wall_ = 0.0, next_snapshot_wall_ = 0.0;
   double last_clock_wall_ = 0.0;
+  double stamp_anchor_ = 0.0;          // ROS time [s] of sim_clock_ 0 (without /clock)
+  std::uint64_t state_version_ = 0;    // changes with every step and rebuild
+  std::uint64_t cloud_version_ = ~std::uint64_t(0);  // the state last published
+  std::atomic<bool> cloud_wanted_{false};  // a new subscriber wants the current state
   double cloud_ms_ = 0.0;
   bool cloud_skipped_ = true;
   sensor_msgs::PointCloud2 cloud_;     // reused: its buffer is not reallocated every time
