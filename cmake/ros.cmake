@@ -13,6 +13,7 @@ add_library(pbf_ros_node
   src/ros/FluidNodeServices.cpp
   src/ros/ParamsConversion.cpp
   src/ros/RealTimePacer.cpp
+  src/ros/ReconfigureRecord.cpp
   src/ros/RenderCameraParams.cpp
   src/ros/SceneMarkers.cpp
   src/ros/SceneLoading.cpp

@@ -24,8 +24,10 @@ float readFloat(const YAML::Node& n, const std::string& origin, const std::strin
   if (!n.IsScalar()) fail(origin, key, "a number");
   try {
     const double v = n.as<double>();
-    if (!std::isfinite(v)) fail(origin, key, "a finite number");
-    return static_cast<float>(v);
+    // The solver works in float: 1e39 is finite as a double but inf as a float.
+    const float f = static_cast<float>(v);
+    if (!std::isfinite(v) || !std::isfinite(f)) fail(origin, key, "a finite number (|x| < 3.4e38)");
+    return f;
   } catch (const YAML::Exception&) {
     fail(origin, key, "a number (got '" + n.Scalar() + "')");
   }
@@ -63,10 +65,24 @@ const YAML::Node required(const YAML::Node& map, const std::string& name,
   return n;
 }
 
+// A map key as text; keys that are lists or maps (`? [a, b]`) are refused by name.
+std::string keyName(const YAML::Node& key, const std::string& origin, const std::string& prefix) {
+  if (!key.IsScalar()) {
+    throw SceneError(origin + ": a key under '" + (prefix.empty() ? std::string("(top level)") : prefix) +
+                     "' is not a plain name (got a " + (key.IsSequence() ? "list" : "map") + ")");
+  }
+  return key.Scalar();
+}
+
+std::string readString(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsScalar()) fail(origin, key, "a string");
+  return n.Scalar();
+}
+
 void checkKeys(const YAML::Node& map, const std::vector<std::string>& allowed,
                const std::string& origin, const std::string& prefix) {
   for (const auto& kv : map) {
-    const std::string k = kv.first.as<std::string>();
+    const std::string k = keyName(kv.first, origin, prefix);
     if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
@@ -128,7 +144,7 @@ void applySolverNode(const YAML::Node& node, const std::string& origin, const st
   if (!node.IsMap()) fail(origin, prefix.empty() ? "solver" : prefix, "a map of solver parameters");
   const auto& setters = solverSetters();
   for (const auto& kv : node) {
-    const std::string k = kv.first.as<std::string>();
+    const std::string k = keyName(kv.first, origin, prefix);
     const auto it = setters.find(k);
     // Parameters whose old form depended on dt or spacing were replaced, not reinterpreted.
     static const std::map<std::string, std::string> replaced = {
@@ -149,7 +165,7 @@ void applySolverNode(const YAML::Node& node, const std::string& origin, const st
 
 FluidBlock readBlock(const YAML::Node& n, const std::string& origin, const std::string& key) {
   if (!n.IsMap()) fail(origin, key, "a map with 'box' or 'sphere'");
-  checkKeys(n, {"box", "sphere", "velocity"}, origin, key + ".");
+  checkKeys(n, {"box", "sphere", "velocity", "frame"}, origin, key + ".");
   FluidBlock b;
   if (n["box"] && n["sphere"]) fail(origin, key, "either 'box' or 'sphere', not both");
   if (const YAML::Node box = n["box"]) {
@@ -170,6 +186,10 @@ FluidBlock readBlock(const YAML::Node& n, const std::string& origin, const std::
     fail(origin, key, "a 'box' or a 'sphere'");
   }
   if (const YAML::Node v = n["velocity"]) b.velocity = readVec3(v, origin, key + ".velocity");
+  if (n["frame"]) {
+    if (!n["frame"].IsScalar() || n["frame"].Scalar().empty()) fail(origin, key + ".frame", "a tf frame name");
+    b.frame = n["frame"].Scalar();
+  }
   return b;
 }
 
@@ -240,9 +260,34 @@ bool blockContains(const FluidBlock& b, const Eigen::Vector3f& p) {
   return (p - b.center).squaredNorm() <= b.radius * b.radius;
 }
 
+// Number of lattice points initialParticles() visits for a block (before overlaps and
+// obstacles are taken out), in double: a tiny spacing must not overflow an int.
+double latticePoints(const FluidBlock& b, float d) {
+  const Eigen::Vector3f size = b.shape == FluidBlock::Shape::Box
+                                   ? Eigen::Vector3f(b.max - b.min)
+                                   : Eigen::Vector3f::Constant(2.0f * b.radius);
+  double n = 1.0;
+  for (int a = 0; a < 3; ++a) n *= std::max(1.0, std::floor(static_cast<double>(size[a]) / d));
+  return n;
+}
+
+Scene parseScene(const std::string& text, const std::string& origin);
+
 }  // namespace
 
 Scene loadSceneString(const std::string& text, const std::string& origin) {
+  try {
+    return parseScene(text, origin);
+  } catch (const YAML::Exception& e) {
+    // Anything the checks above did not foresee still names the file, never escapes as a
+    // YAML exception (a live scene change must be a refusal, not a failed callback).
+    throw SceneError(origin + ": unusable YAML: " + e.what());
+  }
+}
+
+namespace {
+
+Scene parseScene(const std::string& text, const std::string& origin) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -255,7 +300,7 @@ Scene loadSceneString(const std::string& text, const std::string& origin) {
             origin, "");
   Scene s;
   s.source = origin;
-  s.name = root["name"] ? root["name"].as<std::string>() : fs::path(origin).stem().string();
+  s.name = root["name"] ? readString(root["name"], origin, "name") : fs::path(origin).stem().string();
 
   const YAML::Node c = required(root, "container", origin, "container");
   if (!c.IsMap()) fail(origin, "container", "a map with 'min' and 'max'");
@@ -273,11 +318,17 @@ Scene loadSceneString(const std::string& text, const std::string& origin) {
 
   const YAML::Node fluid = required(root, "fluid", origin, "fluid");
   if (!fluid.IsSequence() || fluid.size() == 0) fail(origin, "fluid", "a non-empty list of blocks");
+  if (fluid.size() > kMaxFluidBlocks)
+    fail(origin, "fluid", "at most " + std::to_string(kMaxFluidBlocks) + " blocks (got " +
+                              std::to_string(fluid.size()) + ")");
   for (std::size_t i = 0; i < fluid.size(); ++i)
     s.fluid.push_back(readBlock(fluid[i], origin, "fluid[" + std::to_string(i) + "]"));
 
   if (const YAML::Node obstacles = root["obstacles"]) {
     if (!obstacles.IsSequence()) fail(origin, "obstacles", "a list of obstacles");
+    if (obstacles.size() > kMaxObstacles)
+      fail(origin, "obstacles", "at most " + std::to_string(kMaxObstacles) + " obstacles (got " +
+                                    std::to_string(obstacles.size()) + ")");
     for (std::size_t i = 0; i < obstacles.size(); ++i)
       s.obstacles.push_back(readObstacle(obstacles[i], origin, "obstacles[" + std::to_string(i) + "]"));
   }
@@ -293,12 +344,27 @@ Scene loadSceneString(const std::string& text, const std::string& origin) {
   return s;
 }
 
+}  // namespace
+
 Scene loadSceneFile(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) throw SceneError(path + ": no such scene file");
+  if (fs::is_directory(status)) throw SceneError(path + ": is a directory, not a scene file");
+  if (!fs::is_regular_file(status))
+    throw SceneError(path + ": is not a regular file (a device or a pipe?), not a scene file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) throw SceneError(path + ": cannot read the scene file's size: " + ec.message());
+  if (size > kMaxSceneFileBytes) {
+    throw SceneError(path + ": " + std::to_string(size) + " bytes; a scene file may have at most " +
+                     std::to_string(kMaxSceneFileBytes) + " bytes");
+  }
   std::ifstream in(path);
   if (!in) throw SceneError(path + ": cannot open the scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return loadSceneString(ss.str(), path);
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.read(&text[0], static_cast<std::streamsize>(size));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return loadSceneString(text, path);
 }
 
 void applySolverYaml(const std::string& text, const std::string& origin, SolverParams& params) {
@@ -318,7 +384,13 @@ std::string resolveScenePath(const std::string& name, const std::string& scenes_
   const bool is_path = name.find('/') != std::string::npos ||
                        (name.size() > 5 && name.substr(name.size() - 5) == ".yaml");
   const std::string path = is_path ? name : scenes_dir + "/" + name + ".yaml";
-  if (fs::is_regular_file(path)) return path;
+  std::error_code status_error;
+  const fs::file_status status = fs::status(path, status_error);
+  if (fs::is_regular_file(status)) return path;
+  if (fs::is_directory(status))
+    throw SceneError("scene '" + name + "': " + path + " is a directory, not a scene file");
+  if (fs::exists(status))
+    throw SceneError("scene '" + name + "': " + path + " is not a regular file (a device or a pipe?)");
   std::string known;
   std::error_code ec;
   std::vector<std::string> names;
@@ -359,11 +431,15 @@ std::string Scene::validate() const {
   return "";
 }
 
-void Scene::initialParticles(std::vector<Eigen::Vector3f>& positions,
-                             std::vector<Eigen::Vector3f>& velocities) const {
-  positions.clear();
-  velocities.clear();
-  const float d = solver.particle_spacing;
+namespace {
+
+// Calls visit(position, block index) for every initial particle, in order; stops early when
+// visit returns false.
+template <typename Visit>
+void forEachInitialParticle(const Scene& scene, Visit visit) {
+  const auto& fluid = scene.fluid;
+  const auto& obstacles = scene.obstacles;
+  const float d = scene.solver.particle_spacing;
   for (std::size_t bi = 0; bi < fluid.size(); ++bi) {
     const FluidBlock& b = fluid[bi];
     Eigen::Vector3f lo, hi;
@@ -390,10 +466,56 @@ void Scene::initialParticles(std::vector<Eigen::Vector3f>& positions,
           Eigen::Vector3f normal;
           for (const Obstacle& o : obstacles) solid = solid || o.signedDistance(p, normal) < 0.5f * d;
           if (solid) continue;
-          positions.push_back(p);
-          velocities.push_back(b.velocity);
+          if (!visit(p, bi)) return;
         }
   }
+}
+
+}  // namespace
+
+void Scene::initialParticles(std::vector<Eigen::Vector3f>& positions,
+                             std::vector<Eigen::Vector3f>& velocities,
+                             std::vector<std::uint32_t>* block_of) const {
+  positions.clear();
+  velocities.clear();
+  if (block_of) block_of->clear();
+  forEachInitialParticle(*this, [&](const Eigen::Vector3f& p, std::size_t block) {
+    positions.push_back(p);
+    velocities.push_back(fluid[block].velocity);
+    if (block_of) block_of->push_back(static_cast<std::uint32_t>(block));
+    return true;
+  });
+}
+
+std::string Scene::checkParticleCount(std::size_t max_particles) const {
+  // Walking the lattice costs time but no memory; beyond this many points it is refused
+  // from the bound alone (overlaps and obstacles could only take a fraction out).
+  constexpr double kWalkFactor = 4.0;
+  const float d = solver.particle_spacing;
+  double bound = 0.0;
+  for (const FluidBlock& b : fluid) bound += latticePoints(b, d);
+  std::ostringstream why;
+  if (bound > kWalkFactor * static_cast<double>(max_particles)) {
+    why << "scene '" << name << "' at particle_spacing " << d << " m needs about " << bound
+        << " particles, more than ~max_particles (" << max_particles << ")";
+    return why.str();
+  }
+  std::size_t count = 0;
+  forEachInitialParticle(*this, [&](const Eigen::Vector3f&, std::size_t) {
+    return ++count <= max_particles;
+  });
+  if (count > max_particles) {
+    why << "scene '" << name << "' at particle_spacing " << d << " m needs more than "
+        << max_particles << " particles (~max_particles)";
+  } else if (count == 0) {
+    why << "scene '" << name << "' has no fluid left: its obstacles cover every fluid block";
+  }
+  return why.str();
+}
+
+const std::string& Scene::blockFrame(std::size_t index) const {
+  const std::string& own = fluid.at(index).frame;
+  return own.empty() ? container_frame : own;
 }
 
 }  // namespace pbf

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   try {
     pbf_ros::FluidNode node(nh, private_nh);
+    node.setMasterLostHandler([] { ros::requestShutdown(); });
     // The surface render thread: owns its GL context, reads node.snapshots() only while a
     // ~surface topic has subscribers, never blocks the simulation. A GL context that cannot
     // be created is logged; the simulation keeps running.
@@ -33,6 +34,9 @@ int main(int argc, char** argv) {
       ros::waitForShutdown();
     }
     node.setRenderSettingsListener(nullptr);
+    // A restarted master forgot this node: exit non-zero so that roslaunch's respawn can
+    // start it afresh (README, "Master restart").
+    if (node.masterLost()) return 2;
   } catch (const std::exception& e) {
     ROS_FATAL("pbf_node: %s", e.what());
     return 1;

@@ -24,10 +24,31 @@ bool hasType(const XmlRpc::XmlRpcValue& value, const std::string& type) {
     default: return false;
   }
 }
+
+// A boolean node setting; anything but true/false (e.g. start_paused:=maybe, which
+// roslaunch passes as a string) is an error rather than silently false.
+bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fallback) {
+  XmlRpc::XmlRpcValue value;
+  if (!nh.getParam(name, value)) return fallback;
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeBoolean) {
+    throw std::runtime_error("parameter ~" + name + ": expected true or false, got " +
+                             value.toXml());
+  }
+  return static_cast<bool>(value);
+}
 }  // namespace
 
 FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : nh_(nh), pnh_(private_nh) {
+    : nh_(nh), pnh_(private_nh), record_(private_nh) {
+  // Before anything reads a parameter: values the previous run's reconfigure server left
+  // on the master are not the user's (a relaunch starts like a first launch).
+  const std::set<std::string> forgotten = record_.forgetPreviousRun();
+  if (!forgotten.empty()) {
+    std::string names;
+    for (const std::string& n : forgotten) names += (names.empty() ? "" : ", ") + n;
+    ROS_INFO("pbf_node: ignoring the values a previous run left in %s: %s",
+             pnh_.getNamespace().c_str(), names.c_str());
+  }
   readNodeSettings();
 
   // A bad scene at start-up is fatal: the caller reports it and the node exits non-zero.
@@ -36,7 +57,7 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   pbf::Scene scene;
   try {
     scene = loadScene(scene_name, scenes_dir_);
-  } catch (const pbf::SceneError& e) {
+  } catch (const std::exception& e) {  // SceneError names the file and the key
     throw std::runtime_error(std::string("cannot load scene: ") + e.what());
   }
 
@@ -60,6 +81,7 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   running_ = true;
   pacer_.restart(wallNow(), sim_clock_);
+  anchorStamps();
   sim_thread_ = std::thread(&FluidNode::runSimulation, this);
   reconfigure_live_ = true;
 }
@@ -74,8 +96,17 @@ void FluidNode::readNodeSettings() {
   pnh_.param<std::string>("scenes_dir", scenes_dir_, defaultScenesDir());
   pnh_.param<std::string>("world_frame", world_frame_, world_frame_);
   pnh_.param<std::string>("frame_id", domain_frame_, domain_frame_);
-  pnh_.param("publish_clock", publish_clock_, publish_clock_);
-  pnh_.param("start_paused", paused_, false);
+  publish_clock_ = readBool(pnh_, "publish_clock", publish_clock_);
+  paused_ = readBool(pnh_, "start_paused", false);
+  bool use_sim_time = false;
+  ros::param::get("/use_sim_time", use_sim_time);
+  if (use_sim_time != publish_clock_) {
+    ROS_WARN("pbf_node: ~publish_clock is %s but /use_sim_time is %s: %s",
+             publish_clock_ ? "true" : "false", use_sim_time ? "true" : "false",
+             publish_clock_ ? "other nodes ignore the simulated /clock this node publishes"
+                            : "every node waits for a /clock nobody publishes (a leftover of "
+                              "an earlier launch? fluid.launch sets it every time)");
+  }
   int max_particles = static_cast<int>(max_particles_);
   pnh_.param("max_particles", max_particles, max_particles);
   if (max_particles < 1) {
@@ -113,6 +144,9 @@ FluidConfig FluidNode::startupConfig(const pbf::Scene& scene) {
   }
   // A camera position given at start-up means that camera, not the automatic one.
   if (applyCameraOverride(user_param_names_, user_config_)) user_param_names_.insert("camera_auto");
+  std::set<std::string> recorded = user_param_names_;
+  if (pnh_.hasParam("scene")) recorded.insert("scene");
+  record_.recordUserSettings(user_config_, recorded);
 
   FluidConfig from_scene = user_config_;
   solverParamsToConfig(scene.solver, from_scene);
@@ -124,7 +158,12 @@ FluidConfig FluidNode::startupConfig(const pbf::Scene& scene) {
 }
 
 void FluidNode::advertise() {
-  particles_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>("particles", 2);
+  // A newcomer gets the current state even when it does not change (paused).
+  particles_pub_ = pnh_.advertise<sensor_msgs::PointCloud2>(
+      "particles", 2, [this](const ros::SingleSubscriberPublisher&) {
+        cloud_wanted_ = true;
+        tasks_.wake();
+      });
   stats_pub_ = pnh_.advertise<SimulationStats>("stats", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
@@ -139,13 +178,46 @@ void FluidNode::advertise() {
   // Wall timer + force_update: diagnostics keep coming while sim time is paused.
   diagnostics_timer_ = nh_.createWallTimer(
       ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->force_update(); });
+  master_timer_ = nh_.createWallTimer(ros::WallDuration(1.0),
+                                      [this](const ros::WallTimerEvent&) { watchMaster(); });
+}
+
+// A master that comes back after a restart has forgotten every topic, service and parameter
+// of this node; roscpp does not register again. Rather than run on invisible, the node says
+// so and stops (pbf_node exits non-zero so that roslaunch's respawn can start it afresh).
+void FluidNode::watchMaster() {
+  if (master_lost_) return;
+  if (!ros::master::check()) {
+    if (!master_down_) ROS_WARN("pbf_node: the ROS master is unreachable; waiting for it");
+    master_down_ = true;
+    return;
+  }
+  if (!master_down_) return;
+  master_down_ = false;
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  request[1] = ros::this_node::getName();
+  const bool known = ros::master::execute("lookupNode", request, response, payload, false);
+  if (known) {
+    ROS_INFO("pbf_node: the ROS master is back and still knows this node");
+    return;
+  }
+  master_lost_ = true;
+  ROS_FATAL("pbf_node: the ROS master restarted and no longer knows this node (no topics, "
+            "services or parameters); shutting down so that it can be started again");
+  if (on_master_lost_) on_master_lost_();
 }
 
 void FluidNode::startReconfigure(const FluidConfig& initial) {
+  // The server writes every value to the parameter server: note them first (see
+  // ReconfigureRecord). Its constructor writes what it reads, then updateConfig `initial`.
+  record_.recordWritten(initial);
   reconfigure_ = std::make_unique<ReconfigureServer>(reconfigure_mutex_, pnh_);
   reconfigure_->updateConfig(initial);  // the scene and YAML values seed the server
-  reconfigure_->setCallback(
-      [this](FluidConfig& config, std::uint32_t level) { onReconfigure(config, level); });
+  reconfigure_->setCallback([this](FluidConfig& config, std::uint32_t level) {
+    onReconfigure(config, level);
+    record_.recordWritten(config);  // what the server writes next
+  });
 }
 
 void FluidNode::setRenderSettingsListener(RenderSettingsListener listener) {

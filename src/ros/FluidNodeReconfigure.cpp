@@ -1,7 +1,6 @@
 // dynamic_reconfigure: check a request, decide per level bit what must be redone, and hand
 // the change to the simulation thread (applied between steps). The callback waits for the
 // simulation thread, so when the reconfigure call returns the change is in force.
-#include <sstream>
 
 #include "pbf_ros/ros/FluidNode.h"
 #include "pbf_ros/ros/ParamsConversion.h"
@@ -49,10 +48,11 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
       overlayParams(user_config, user_names, fresh);
       for (const std::string& note : sanitizeConfig(fresh, applied_config_)) refuse(note);
       config = fresh;
-    } catch (const pbf::SceneError& e) {
+    } catch (const std::exception& e) {  // any failure, foreseen or not, is a refusal
       refuse("scene '" + config.scene + "' refused (" + e.what() + "); '" +
              applied_config_.scene + "' keeps running");
-      config.scene = applied_config_.scene;
+      config = applied_config_;  // the server then shows what runs
+      return;
     }
   }
 
@@ -79,17 +79,14 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
     return;
   }
   if (rebuild) {
-    // Refuse resolutions that would ask for more particles than the node allows.
+    // Refuse resolutions that would ask for more particles than the node allows, counted
+    // before anything is allocated.
     pbf::Scene probe = scene;
     probe.solver = params;
-    std::vector<Eigen::Vector3f> positions, velocities;
-    probe.initialParticles(positions, velocities);
-    if (positions.size() > max_particles_) {
-      std::ostringstream why;
-      why << "scene '" << config.scene << "' with particle_spacing " << config.particle_spacing
-          << " needs " << positions.size() << " particles, more than ~max_particles ("
-          << max_particles_ << "); refused";
-      refuse(why.str());
+    std::string why = probe.validate();
+    if (why.empty()) why = probe.checkParticleCount(max_particles_);
+    if (!why.empty()) {
+      refuse("reconfigure refused: " + why + "; '" + applied_config_.scene + "' keeps running");
       config = applied_config_;
       return;
     }

@@ -3,6 +3,7 @@
 // here waits for a ROS callback.
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <rosgraph_msgs/Clock.h>
 
 #include "pbf_ros/ros/CloudConversion.h"
@@ -31,15 +32,23 @@ double nextDue(double due, double period, double wall) {
 
 constexpr double kPausedWakeup = 0.05;     // [s] while paused: tasks, /clock, publications
 constexpr double kMinClockPeriod = 0.001;  // /clock at most 1 kHz (as-fast-as-possible runs)
+constexpr double kMaxTfWait = 0.02;        // [wall s] for a frame publisher behind the step
 }  // namespace
 
 double FluidNode::wallNow() const {
   return std::chrono::duration<double>(SteadyClock::now().time_since_epoch()).count();
 }
 
-// With ~publish_clock the node is the clock: its messages carry simulated time, as /clock.
+// Every message about a state carries that state's simulated time. With ~publish_clock the
+// node is the clock: the stamp is /clock's time. Without it, the stamp is the ROS time at
+// which the simulation (re)started plus the simulated time since: below real time the
+// stamps fall behind the wall clock, but differences between them are simulated seconds.
 ros::Time FluidNode::stamp() const {
-  return publish_clock_ ? ros::Time(sim_clock_) : ros::Time::now();
+  return publish_clock_ ? ros::Time(sim_clock_) : ros::Time(stamp_anchor_ + sim_clock_);
+}
+
+void FluidNode::anchorStamps() {
+  stamp_anchor_ = std::max(0.0, ros::Time::now().toSec() - sim_clock_);
 }
 
 void FluidNode::runSimulation() {
@@ -68,7 +77,12 @@ void FluidNode::runSimulation() {
 void FluidNode::stepOnce() {
   if (!attachments_) attachments_ = std::make_unique<TfAttachments>(domain_frame_);
   try {
-    const std::vector<std::string> missing = attachments_->update(scene_, *solver_);
+    // On the node's own /clock, frame publishers stamp with simulated time: look up the
+    // pose at this step's time and wait a little for a publisher that is behind. On the
+    // wall clock the step's stamp lags real time below real-time speed: take the latest.
+    const ros::Time time = publish_clock_ ? stamp() : ros::Time(0);
+    const std::vector<std::string> missing =
+        attachments_->update(scene_, *solver_, time, kMaxTfWait);
     if (!missing.empty()) {
       ROS_WARN_THROTTLE(10.0, "pbf_node: no tf for frame '%s' (%s -> it) yet; its solid stays put",
                         missing.front().c_str(), domain_frame_.c_str());
@@ -79,6 +93,7 @@ void FluidNode::stepOnce() {
   const double time_before = solver_->time();
   last_stats_ = solver_->step();
   sim_clock_ += solver_->time() - time_before;
+  ++state_version_;
   nan_recoveries_ += static_cast<std::uint32_t>(last_stats_.nan_retries);
   stepped_since_resume_ = true;
   const double wall = wallNow();
@@ -109,7 +124,7 @@ void FluidNode::stepOnce() {
 void FluidNode::publishDue(double wall, bool force) {
   if (force || wall >= next_cloud_wall_) {
     next_cloud_wall_ = nextDue(next_cloud_wall_, publish_period_, wall);
-    publishCloud();
+    publishCloud(force);
   }
   if (force || wall >= next_stats_wall_) {
     next_stats_wall_ = nextDue(next_stats_wall_, stats_period_, wall);
@@ -122,13 +137,17 @@ void FluidNode::publishDue(double wall, bool force) {
   }
 }
 
-void FluidNode::publishCloud() {
+void FluidNode::publishCloud(bool force) {
   // Lazy: nobody listens, nothing is built (stats report "cloud" as skipped).
   if (particles_pub_.getNumSubscribers() == 0) {
     cloud_skipped_ = true;
     cloud_ms_ = 0.0;
     return;
   }
+  // A state is published once, except to someone who just subscribed (paused fluid).
+  const bool wanted = cloud_wanted_.exchange(false);
+  if (!force && !wanted && cloud_version_ == state_version_) return;
+  cloud_version_ = state_version_;
   const auto start = SteadyClock::now();
   cloud_.header.stamp = stamp();
   cloud_.header.frame_id = domain_frame_;
@@ -175,21 +194,23 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
   try {
     pbf::Scene next = scene;
     next.solver = params;
-    std::vector<Eigen::Vector3f> positions, velocities;
-    next.initialParticles(positions, velocities);
-    if (positions.size() > max_particles_) {
-      return "scene '" + next.name + "' needs " + std::to_string(positions.size()) +
-             " particles, more than ~max_particles (" + std::to_string(max_particles_) + ")";
-    }
+    // Counted before anything is allocated: a fine spacing must not take gigabytes first.
+    std::string why = next.validate();
+    if (why.empty()) why = next.checkParticleCount(max_particles_);
+    if (!why.empty()) return why;
     // A fresh solver: time and step count start again from 0; the old one keeps running
     // if anything below throws.
     auto fresh = std::make_unique<pbf::PbfSolver>();
     pbf::setUpSolver(next, *fresh);  // parameters, container, obstacles, particles
+    seedAtCurrentPoses(next, *fresh);
     solver_ = std::move(fresh);
     scene_ = next;
   } catch (const std::exception& e) {
     return e.what();
   }
+  ++state_version_;
+  if (attachments_) attachments_->restart();
+  anchorStamps();
   last_stats_ = pbf::StepStats();
   last_stats_.particle_count = static_cast<std::uint32_t>(solver_->size());
   nan_recoveries_ = 0;
@@ -199,6 +220,42 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
   announceScene();
   updateHealth();
   return "";
+}
+
+// A reset or scene switch while attached frames have moved: the container, the obstacles
+// and the fluid blocks given in those frames start where the frames are now (water in the
+// tilted cup, not where the upright cup stood). Frames tf does not know stay at rest.
+void FluidNode::seedAtCurrentPoses(const pbf::Scene& scene, pbf::PbfSolver& solver) {
+  if (!TfAttachments::needed(scene)) return;
+  if (!attachments_) attachments_ = std::make_unique<TfAttachments>(domain_frame_);
+  std::map<std::string, Eigen::Isometry3f> poses;
+  auto poseOf = [&](const std::string& frame) -> const Eigen::Isometry3f* {
+    if (frame.empty()) return nullptr;
+    auto it = poses.find(frame);
+    if (it == poses.end()) {
+      Eigen::Isometry3f pose;
+      if (!attachments_->currentPose(frame, pose)) return nullptr;
+      it = poses.emplace(frame, pose).first;
+    }
+    return &it->second;
+  };
+  if (const auto* pose = poseOf(scene.container_frame)) solver.setContainerPose(*pose);
+  for (std::size_t k = 0; k < scene.obstacles.size(); ++k)
+    if (const auto* pose = poseOf(scene.obstacles[k].frame))
+      solver.setObstaclePose(k, *pose * scene.obstacles[k].offset);
+  bool moved = false;
+  for (std::size_t b = 0; b < scene.fluid.size(); ++b) moved = moved || poseOf(scene.blockFrame(b));
+  if (!moved) return;
+  std::vector<Eigen::Vector3f> x, v;
+  std::vector<std::uint32_t> block_of;
+  scene.initialParticles(x, v, &block_of);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (const auto* pose = poseOf(scene.blockFrame(block_of[i]))) {
+      x[i] = *pose * x[i];
+      v[i] = pose->linear() * v[i];
+    }
+  }
+  solver.setParticles(x, v);
 }
 
 void FluidNode::announceScene() {

@@ -45,29 +45,48 @@ class NodeControlTest(unittest.TestCase):
         self.assertAlmostEqual(self.defaults['xsph_viscosity'], 0.002)
         self.assertAlmostEqual(self.defaults['particle_spacing'], 0.05)
 
-    def test_reset_restores_the_initial_positions(self):
+    def _paused_positions(self):
+        """The (paused) fluid's positions: a state is published once, and again to newcomers."""
         clouds = cloud_listener()
         try:
-            self._pause_and_reset()
-            initial = sorted(p[:3] for p in cloud_points(clouds.next(timeout=10.0)))
-            self.assertTrue(self.pause(False).success)
-            self.stats.next(timeout=10.0, condition=lambda m: m.sim_time > 0.2)
-            self.assertTrue(self.pause(True).success)
-            moved = sorted(p[:3] for p in cloud_points(clouds.next(timeout=10.0)))
-            self.assertNotEqual(initial, moved)
-            self.assertTrue(self.reset().success)
-            restored = sorted(p[:3] for p in cloud_points(clouds.next(timeout=10.0)))
-            self.assertEqual(initial, restored)
-            m = self.stats.next(timeout=10.0)
-            self.assertEqual(m.step_count, 0)
-            self.assertEqual(m.sim_time, 0.0)
+            return sorted(p[:3] for p in cloud_points(clouds.next(timeout=10.0)))
+        finally:
+            clouds.close()
+
+    def test_reset_restores_the_initial_positions(self):
+        self._pause_and_reset()
+        initial = self._paused_positions()
+        self.assertTrue(self.pause(False).success)
+        self.stats.next(timeout=10.0, condition=lambda m: m.sim_time > 0.2)
+        self.assertTrue(self.pause(True).success)
+        moved = self._paused_positions()
+        self.assertNotEqual(initial, moved)
+        self.assertTrue(self.reset().success)
+        restored = self._paused_positions()
+        self.assertEqual(initial, restored)
+        m = self.stats.next(timeout=10.0, condition=lambda m: m.step_count == 0)
+        self.assertEqual(m.sim_time, 0.0)
+
+    def test_a_paused_state_is_published_once_with_its_simulated_stamp(self):
+        self._pause_and_reset()
+        clouds = cloud_listener()
+        try:
+            previous = clouds.current_or_next(timeout=10.0).header.stamp
+            for _ in range(3):  # ~step: one new state each, stamped dt later
+                self.assertTrue(self.step().success)
+                previous = clouds.current_or_next(
+                    timeout=10.0, condition=lambda m, p=previous: m.header.stamp > p).header.stamp
+            count = clouds.count
+            rospy.sleep(0.5)  # paused: nothing new to publish
+            self.assertEqual(clouds.count, count)
         finally:
             clouds.close()
 
     def test_pause_freezes_sim_time_and_step_advances_exactly_one(self):
         response = self.pause(True)
         self.assertTrue(response.success, response.message)
-        first = self.stats.next(timeout=10.0)
+        # Paused stats report a real-time factor of 0 (an earlier message may still arrive).
+        first = self.stats.next(timeout=10.0, condition=lambda m: m.real_time_factor == 0.0)
         time.sleep(0.5)
         later = self.stats.next(timeout=10.0)
         self.assertEqual(first.sim_time, later.sim_time)
@@ -77,7 +96,8 @@ class NodeControlTest(unittest.TestCase):
             before = self.stats.next(timeout=10.0).step_count
             response = self.step()
             self.assertTrue(response.success, response.message)
-            after = self.stats.next(timeout=10.0)
+            # Wait for a condition, not for "the next message" (it may predate the step).
+            after = self.stats.next(timeout=10.0, condition=lambda m: m.step_count > before)
             self.assertEqual(after.step_count, before + 1)
             self.assertGreater(after.dt, 0.0)
         response = self.pause(False)
@@ -111,7 +131,7 @@ class NodeControlTest(unittest.TestCase):
         before = self.stats.next(timeout=20.0, condition=lambda m: m.step_count > 20)
         config = self.reconfigure.update_configuration({'xsph_viscosity': 0.001})
         self.assertAlmostEqual(config['xsph_viscosity'], 0.001)
-        after = self.stats.next(timeout=10.0)
+        after = self.stats.next(timeout=10.0, condition=lambda m: m.step_count > before.step_count)
         self.assertGreaterEqual(after.step_count, before.step_count)
         self.assertGreaterEqual(after.sim_time, before.sim_time)
         self.assertEqual(after.particle_count, before.particle_count)
@@ -124,7 +144,8 @@ class NodeControlTest(unittest.TestCase):
         # What the user set (particle_spacing at start-up, xsph_viscosity live) stays set.
         self.assertAlmostEqual(config['particle_spacing'], 0.05)
         self.assertAlmostEqual(config['xsph_viscosity'], 0.003)
-        after = self.stats.next(timeout=10.0)
+        after = self.stats.next(timeout=10.0,
+                                condition=lambda m: m.particle_count != before.particle_count)
         self.assertNotEqual(after.particle_count, before.particle_count)
         self.assertLess(after.step_count, before.step_count)
 
@@ -133,7 +154,8 @@ class NodeControlTest(unittest.TestCase):
         try:
             config = self.reconfigure.update_configuration({'particle_spacing': 0.06})
             self.assertAlmostEqual(config['particle_spacing'], 0.06)
-            after = self.stats.next(timeout=10.0)
+            after = self.stats.next(timeout=10.0,
+                                    condition=lambda m: m.particle_count != before.particle_count)
             self.assertLess(after.particle_count, before.particle_count)
             self.assertLess(after.step_count, before.step_count)
         finally:

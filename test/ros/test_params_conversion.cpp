@@ -124,3 +124,29 @@ TEST(ParamsConversion, ChangedParamsNamesExactlyTheDifferences) {
   EXPECT_EQ(pbf_ros::changedParams(a, b),
             (std::set<std::string>{"xsph_viscosity", "scene", "unilateral_constraint"}));
 }
+
+namespace {
+// `config` with one parameter set to its value in `bound` (Fluid.cfg's min or max).
+FluidConfig withBound(const FluidConfig::AbstractParamDescriptionConstPtr& desc,
+                      const FluidConfig& bound) {
+  FluidConfig config = FluidConfig::__getDefault__();
+  dynamic_reconfigure::Config msg;
+  desc->toMessage(msg, bound);
+  desc->fromMessage(msg, config);
+  // min_iterations at its max (100) needs max_iterations 100 too: sanitizeConfig's rule.
+  pbf_ros::sanitizeConfig(config, FluidConfig::__getDefault__());
+  return config;
+}
+}  // namespace
+
+TEST(ParamsConversion, EveryAdvertisedRangeEndIsUsable) {
+  // What Fluid.cfg offers (rqt's sliders, dynparam) the solver must accept: scorr_delta_q's
+  // advertised minimum 0 used to be refused by the solver.
+  for (const auto& desc : FluidConfig::__getParamDescriptions__()) {
+    for (const FluidConfig* bound : {&FluidConfig::__getMin__(), &FluidConfig::__getMax__()}) {
+      const FluidConfig config = withBound(desc, *bound);
+      EXPECT_EQ(pbf_ros::configToSolverParams(config).validate(), "")
+          << desc->name << " at its " << (bound == &FluidConfig::__getMin__() ? "min" : "max");
+    }
+  }
+}

@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,7 +31,17 @@ struct FluidBlock {
   Eigen::Vector3f center = Eigen::Vector3f::Zero();  // Sphere
   float radius = 0.0f;                             // Sphere
   Eigen::Vector3f velocity = Eigen::Vector3f::Zero();  // initial velocity [m/s]
+  // tf frame the block is given in ("" = the scene's container_frame, if any): the node
+  // seeds the block where that frame is now, so a reset refills a tilted cup or a moved
+  // tank, not the place where it stood at rest.
+  std::string frame;
 };
+
+// Upper bounds on what a scene file may ask for: a hostile or broken file is refused with
+// a clear message instead of taking minutes and gigabytes to load.
+constexpr std::size_t kMaxSceneFileBytes = 1 << 20;  // 1 MiB (the shipped scenes: < 2 kB)
+constexpr std::size_t kMaxFluidBlocks = 1000;
+constexpr std::size_t kMaxObstacles = 256;
 
 struct Scene {
   std::string name;
@@ -48,14 +60,26 @@ struct Scene {
   // Particles on a cubic lattice of spacing solver.particle_spacing filling every block,
   // cell-centred (first layer at d/2 from a block's face). Overlaps are filled once;
   // points inside an obstacle (closer than d/2 to it) are left out.
+  // `block_of`, when given, receives the index of the block each particle came from.
   void initialParticles(std::vector<Eigen::Vector3f>& positions,
-                        std::vector<Eigen::Vector3f>& velocities) const;
+                        std::vector<Eigen::Vector3f>& velocities,
+                        std::vector<std::uint32_t>* block_of = nullptr) const;
+
+  // Checks, without allocating, that initialParticles() gives between 1 and max_particles
+  // particles: "" when it does, otherwise why not (how many it would need, or that the
+  // obstacles leave none). Costs O(blocks) for a lattice that clearly fits or clearly does
+  // not, and never walks more than a few times max_particles lattice points.
+  std::string checkParticleCount(std::size_t max_particles) const;
+
+  // The frame block `index` is given in (its own, else container_frame; "" = fluid_domain).
+  const std::string& blockFrame(std::size_t index) const;
 
   // Empty when usable; otherwise what is wrong (container, blocks outside it, solver).
   std::string validate() const;
 };
 
-// Parses a scene file. Throws SceneError (file, key, expectation) for anything wrong.
+// Parses a scene file. Throws SceneError (file, key, expectation) for anything wrong,
+// including a path that is not a regular file or is larger than kMaxSceneFileBytes.
 Scene loadSceneFile(const std::string& path);
 
 // Parses YAML text; 'origin' names it in error messages.
@@ -67,7 +91,8 @@ void applySolverYaml(const std::string& yaml_text, const std::string& origin,
                      SolverParams& params);
 
 // "dam_break" -> "<scenes_dir>/dam_break.yaml"; a path with '/' or ending in .yaml is
-// used as is. Throws SceneError when the file does not exist, listing the known scenes.
+// used as is. Throws SceneError when the file does not exist (listing the known scenes) or
+// is not a regular file (a directory, a device).
 std::string resolveScenePath(const std::string& name_or_path, const std::string& scenes_dir);
 
 }  // namespace pbf

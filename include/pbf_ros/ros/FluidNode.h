@@ -35,6 +35,7 @@
 #include "pbf_ros/core/Scene.h"
 #include "pbf_ros/ros/FluidDiagnostics.h"
 #include "pbf_ros/ros/RealTimePacer.h"
+#include "pbf_ros/ros/ReconfigureRecord.h"
 #include "pbf_ros/ros/SimulationTasks.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
 #include "pbf_ros/ros/SurfaceRenderStatus.h"
@@ -68,6 +69,11 @@ class FluidNode {
   // Adds or replaces a transform on the node's one latched /tf_static publisher (any thread).
   void sendStaticTransform(const geometry_msgs::TransformStamped& transform);
 
+  // Called (on the spinner thread) when the master restarted and forgot this node; see
+  // watchMaster(). pbf_node shuts down and exits non-zero.
+  void setMasterLostHandler(std::function<void()> handler) { on_master_lost_ = std::move(handler); }
+  bool masterLost() const { return master_lost_; }
+
  private:
   using ReconfigureServer = dynamic_reconfigure::Server<FluidConfig>;
 
@@ -76,6 +82,7 @@ class FluidNode {
   FluidConfig startupConfig(const pbf::Scene& scene);
   void advertise();
   void startReconfigure(const FluidConfig& initial);
+  void watchMaster();  // wall timer, spinner thread
 
   // --- reconfigure (FluidNodeReconfigure.cpp); spinner thread ---
   void onReconfigure(FluidConfig& config, std::uint32_t level);
@@ -93,13 +100,15 @@ class FluidNode {
   void runSimulation();
   void stepOnce();
   void publishDue(double wall, bool force);
-  void publishCloud();
+  void publishCloud(bool force);
   void publishStats();
   void publishClock();
   // Replaces the fluid by the scene's initial state with `params`. "" or the error (the
   // running fluid is untouched then).
   std::string rebuildFluid(const pbf::Scene& scene, const pbf::SolverParams& params);
   void announceScene();  // markers + static tf
+  void seedAtCurrentPoses(const pbf::Scene& scene, pbf::PbfSolver& solver);
+  void anchorStamps();   // stamps continue from the ROS time now (start, resume, rebuild)
   void setRates(double publish_rate, double stats_rate);
   void updateHealth();
   ros::Time stamp() const;
@@ -124,7 +133,11 @@ class FluidNode {
   std::mutex tf_static_mutex_;          // guards tf_static_ (sim thread, render settings)
   tf2_ros::StaticTransformBroadcaster tf_static_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
-  ros::WallTimer diagnostics_timer_;
+  ros::WallTimer diagnostics_timer_, master_timer_;
+  bool master_down_ = false;
+  std::atomic<bool> master_lost_{false};
+  std::function<void()> on_master_lost_;
+  ReconfigureRecord record_;  // parameters the user set vs. those a previous run left
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<ReconfigureServer> reconfigure_;
 
@@ -148,6 +161,10 @@ class FluidNode {
   double publish_period_ = 1.0 / 30.0, stats_period_ = 0.1;
   double next_cloud_wall_ = 0.0, next_stats_wall_ = 0.0, next_snapshot_wall_ = 0.0;
   double last_clock_wall_ = 0.0;
+  double stamp_anchor_ = 0.0;          // ROS time [s] of sim_clock_ 0 (without /clock)
+  std::uint64_t state_version_ = 0;    // changes with every step and rebuild
+  std::uint64_t cloud_version_ = ~std::uint64_t(0);  // the state last published
+  std::atomic<bool> cloud_wanted_{false};  // a new subscriber wants the current state
   double cloud_ms_ = 0.0;
   bool cloud_skipped_ = true;
   sensor_msgs::PointCloud2 cloud_;     // reused: its buffer is not reallocated every time

@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""Live hostile input (issue 11): every failed scene change is a named refusal after which
+the reconfigure server reports the scene that runs; a spacing asking for millions of
+particles is refused before anything is allocated; Fluid.cfg's range ends are usable."""
+import os
+import tempfile
+import unittest
+import xmlrpc.client
+
+import dynamic_reconfigure.client
+import rosgraph
+import rospy
+import rostest
+
+from fluid_test_util import NODE, stats_listener
+
+
+def peak_rss_mb(node_name):
+    """The node process's peak resident memory (VmHWM) [MB]."""
+    api = rosgraph.Master('/test_hostile_input').lookupNode(node_name)
+    pid = xmlrpc.client.ServerProxy(api).getPid('/test_hostile_input')[2]
+    with open('/proc/%d/status' % pid) as f:
+        for line in f:
+            if line.startswith('VmHWM:'):
+                return int(line.split()[1]) / 1024.0
+    raise AssertionError('no VmHWM for pid %d' % pid)
+
+
+def scene_file(text):
+    f = tempfile.NamedTemporaryFile('w', suffix='.yaml', delete=False)
+    f.write(text)
+    f.close()
+    return f.name
+
+
+class HostileInputTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.client = dynamic_reconfigure.client.Client(NODE, timeout=30.0)
+        cls.stats = stats_listener()
+        cls.running = cls.client.get_configuration(timeout=10.0)['scene']
+
+    def assert_still_running(self, particle_count):
+        """The running scene is what the server reports, and it keeps stepping."""
+        self.assertEqual(self.client.get_configuration(timeout=10.0)['scene'], self.running)
+        first = self.stats.next(timeout=20.0)
+        later = self.stats.next(timeout=20.0, condition=lambda m: m.step_count > first.step_count)
+        self.assertEqual(later.particle_count, particle_count)
+
+    def test_scenes_that_fail_are_refused_and_the_server_shows_the_running_one(self):
+        count = self.stats.next(timeout=20.0).particle_count
+        body = 'container: {min: [0,0,0], max: [1,1,1]}\nfluid: [{box: {min: [0,0,0], max: [1,1,0.5]}}]\n'
+        bad = [scene_file('name: [a, b]\n' + body),
+               scene_file(body + '? [a, b]\n: 1\n'),
+               scene_file(body + 'obstacles: [{box: {center: [0.5,0.5,0.5], half_extents: [1,1,1]}}]\n'),
+               tempfile.gettempdir(), '/dev/zero']
+        try:
+            for scene in bad:
+                config = self.client.update_configuration({'scene': scene})
+                self.assertEqual(config['scene'], self.running, scene)
+                # A later, unrelated change does not re-try the bad scene.
+                config = self.client.update_configuration({'xsph_c': 0.02})
+                self.assertEqual(config['scene'], self.running, scene)
+                self.assertAlmostEqual(config['xsph_c'], 0.02)
+                self.assert_still_running(count)
+        finally:
+            for path in bad[:3]:
+                os.unlink(path)
+
+    def test_a_spacing_bomb_is_refused_with_memory_flat(self):
+        count = self.stats.next(timeout=20.0).particle_count
+        before = peak_rss_mb(NODE)
+        # 0.01 m in a 4 x 4 x 0.4 m layer: 6.4 million particles (~150 MB before they were
+        # counted first), against ~max_particles 20 000.
+        config = self.client.update_configuration({'particle_spacing': 0.01})
+        self.assertAlmostEqual(config['particle_spacing'], 0.2)
+        self.assertLess(peak_rss_mb(NODE) - before, 50.0)
+        self.assert_still_running(count)
+
+    def test_the_advertised_minimum_of_scorr_delta_q_is_usable(self):
+        minimum = self.client.get_parameter_descriptions(timeout=10.0)
+        minimum = [d for d in minimum if d['name'] == 'scorr_delta_q'][0]['min']
+        config = self.client.update_configuration({'scorr_delta_q': minimum})
+        self.assertAlmostEqual(config['scorr_delta_q'], minimum)
+        config = self.client.update_configuration({'scorr_delta_q': 0.2})
+        self.assertAlmostEqual(config['scorr_delta_q'], 0.2)
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_hostile_input')
+    rostest.rosrun('pbf_ros', 'hostile_input', HostileInputTest)
