@@ -60,9 +60,9 @@ class HostileInputTest(unittest.TestCase):
                 config = self.client.update_configuration({'scene': scene})
                 self.assertEqual(config['scene'], self.running, scene)
                 # A later, unrelated change does not re-try the bad scene.
-                config = self.client.update_configuration({'xsph_c': 0.02})
+                config = self.client.update_configuration({'xsph_viscosity': 0.002})
                 self.assertEqual(config['scene'], self.running, scene)
-                self.assertAlmostEqual(config['xsph_c'], 0.02)
+                self.assertAlmostEqual(config['xsph_viscosity'], 0.002)
                 self.assert_still_running(count)
         finally:
             for path in bad[:3]:

@@ -107,10 +107,10 @@ class NodeLifecycleTest(unittest.TestCase):
     def test_relaunch_starts_like_a_first_launch(self):
         name = 'relaunched_fluid'
         first, client, config = start_and_get_config(
-            name, ['_scene:=' + os.path.join(SCENES, 'coarse_tank.yaml'), '_xsph_c:=0.3'])
+            name, ['_scene:=' + os.path.join(SCENES, 'coarse_tank.yaml'), '_xsph_viscosity:=0.003'])
         try:
             self.assertAlmostEqual(config['particle_spacing'], 0.06)  # the scene's own
-            self.assertAlmostEqual(config['xsph_c'], 0.3)              # the user's
+            self.assertAlmostEqual(config['xsph_viscosity'], 0.003)       # the user's
             config = client.update_configuration({'vorticity_epsilon': 0.02})  # live only
             self.assertAlmostEqual(config['vorticity_epsilon'], 0.02)
             client.close()
@@ -125,7 +125,7 @@ class NodeLifecycleTest(unittest.TestCase):
                                    msg='the new scene\'s own spacing, not the stale 0.06')
             self.assertAlmostEqual(config['vorticity_epsilon'],
                                    0.0)  # Fluid.cfg's default again
-            self.assertAlmostEqual(config['xsph_c'], 0.3)  # still set by the user
+            self.assertAlmostEqual(config['xsph_viscosity'], 0.003)  # still set by the user
             # ... and a scene switch follows the scene, not stale values.
             config = client.update_configuration(
                 {'scene': os.path.join(SCENES, 'coarse_tank.yaml')})
