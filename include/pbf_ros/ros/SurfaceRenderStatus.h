@@ -16,6 +16,9 @@ struct SurfaceRenderStatus {
   std::atomic<bool> unavailable{false};
   // Frames rendered since the node started.
   std::atomic<std::uint64_t> frames{0};
+  // Subscribers of the colour and the depth image (either counts camera_info too).
+  std::atomic<int> image_subscribers{0};
+  std::atomic<int> depth_subscribers{0};
 };
 
 }  // namespace pbf_ros
