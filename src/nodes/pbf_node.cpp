@@ -8,10 +8,12 @@
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "fluid");
+  // Held for the whole of main: the last NodeHandle to go shuts ROS down, logging with it,
+  // and a start-up error must still be printed below.
+  ros::NodeHandle nh, private_nh("~");
   bool master_lost = false;
   try {
-    pbf_ros::FluidDriver fluid(ros::NodeHandle(), ros::NodeHandle("~"),
-                               [] { ros::requestShutdown(); });
+    pbf_ros::FluidDriver fluid(nh, private_nh, [] { ros::requestShutdown(); });
     {
       // Two threads: a service may wait for the simulation thread while reconfigure or
       // diagnostics are served. Stopped (end of scope) before `fluid` goes away.
