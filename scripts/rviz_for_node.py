@@ -3,12 +3,15 @@
 
 The shipped config is written for the default node /fluid. This fills in the node's own
 topics (a node started with another name or in a namespace), sets the particle size to the
-running fluid's particle spacing, subscribes to the cloud over TCP (reliable), and switches
-the surface image displays on only when asked: rendering the surface costs the simulation
-about half its real-time factor on a small machine.
+running fluid's particle spacing, subscribes to the cloud over TCP (reliable), and keeps the
+surface image displays only when asked: rendering the surface costs the simulation about
+half its real-time factor on a small machine. They are removed rather than unticked: rviz
+1.14 re-enables an image display whose panel its saved window state shows, and subscribes.
 
   rviz_for_node.py [--node NAME] [--surface true|false] [--spacing METRES]
                    [--config IN.rviz] [--output OUT.rviz] [--no-rviz] [rviz args...]
+
+OUT.rviz defaults to $ROS_HOME/pbf_ros/rviz_<node>.rviz (~/.ros/...).
 
 NAME is resolved like a node name (relative to ROS_NAMESPACE, which roslaunch sets). The
 spacing is read from the node's dynamic_reconfigure parameter `particle_spacing` once the
@@ -17,7 +20,6 @@ node's reconfigure service is up (at most --wait seconds), unless --spacing give
 import argparse
 import os
 import sys
-import tempfile
 
 import yaml
 
@@ -37,8 +39,13 @@ def resolve_node(name):
 
 def fit_config(config, node, spacing, surface):
     """Returns the rviz config (a dict) made to fit `node`; changes `config` in place."""
-    displays = config['Visualization Manager']['Displays']
-    surface_names = []
+    manager = config['Visualization Manager']
+    displays = manager['Displays']
+    surface_names = [d['Name'] for d in displays if d.get('Class') in SURFACE]
+    if not surface:
+        manager['Displays'] = displays = [d for d in displays if d.get('Class') not in SURFACE]
+        for name in surface_names:
+            config.get('Window Geometry', {}).pop(name, None)
     for display in displays:
         cls = display.get('Class')
         if cls == CLOUD:
@@ -50,16 +57,8 @@ def fit_config(config, node, spacing, surface):
             display['Marker Topic'] = node + '/markers'
         elif cls in SURFACE:
             display['Image Topic'] = node + '/rgb/image_rect_color'
-            display['Enabled'] = bool(surface)
-            display['Value'] = bool(surface)
-            surface_names.append(display['Name'])
-    # The Camera display lists which other displays it overlays; keep that in step.
-    for display in displays:
-        visibility = display.get('Visibility')
-        if isinstance(visibility, dict):
-            for name in surface_names:
-                if name in visibility:
-                    visibility[name] = bool(surface)
+            display['Enabled'] = True
+            display['Value'] = True
     return config
 
 
@@ -101,8 +100,11 @@ def main(argv):
 
     output = args.output
     if output is None:
-        fd, output = tempfile.mkstemp(prefix='pbf_rviz_', suffix='.rviz')
-        os.close(fd)
+        # One file per node, rewritten on every launch (rviz reads it once, at start).
+        import rospkg
+        directory = os.path.join(rospkg.get_ros_home(), 'pbf_ros')
+        os.makedirs(directory, exist_ok=True)
+        output = os.path.join(directory, 'rviz%s.rviz' % node.replace('/', '_'))
     with open(output, 'w') as f:
         yaml.safe_dump(config, f, default_flow_style=False, sort_keys=False)
     if args.no_rviz:

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """scripts/rviz_for_node.py fits config/pbf.rviz to a node: every topic under the node's own
 name (also in a namespace), the particle size = the spacing, the cloud over TCP, the surface
-displays off unless asked. No master needed (--spacing, --no-rviz)."""
+displays only when asked. No master needed (--spacing, --no-rviz)."""
 import os
 import subprocess
 import sys
@@ -36,7 +36,8 @@ def displays(config, cls):
 class RvizForNodeTest(unittest.TestCase):
 
     def test_topics_follow_the_node_name_and_namespace(self):
-        text, config = fitted('--node', 'fluid2', '--spacing', '0.03', namespace='/lab')
+        text, config = fitted('--node', 'fluid2', '--spacing', '0.03', '--surface', 'true',
+                              namespace='/lab')
         self.assertNotIn('/fluid/', text)
         for d in displays(config, 'rviz/PointCloud2'):
             self.assertEqual(d['Topic'], '/lab/fluid2/particles')
@@ -54,15 +55,20 @@ class RvizForNodeTest(unittest.TestCase):
             self.assertAlmostEqual(d['Size (m)'], 0.035)
             self.assertIs(d['Unreliable'], False)
 
-    def test_surface_displays_are_off_unless_asked(self):
-        for surface, expected in (('false', False), ('true', True)):
-            _, config = fitted('--node', '/fluid', '--spacing', '0.02', '--surface', surface)
-            for cls in ('rviz/Image', 'rviz/Camera'):
-                d = displays(config, cls)[0]
-                self.assertIs(d['Enabled'], expected, (cls, surface))
-                self.assertIs(d['Value'], expected, (cls, surface))
-        _, config = fitted('--node', '/fluid', '--spacing', '0.02')  # the default
-        self.assertIs(displays(config, 'rviz/Image')[0]['Enabled'], False)
+    def test_surface_displays_only_when_asked(self):
+        # Not merely unticked: rviz re-enables an image display whose panel it restores.
+        for args in ([], ['--surface', 'false']):
+            text, config = fitted('--node', '/fluid', '--spacing', '0.02', *args)
+            self.assertNotIn('image_rect_color', text)
+            self.assertEqual(displays(config, 'rviz/Image') + displays(config, 'rviz/Camera'), [])
+            self.assertNotIn('Fluid surface (pbf_node render, ~rgb/image_rect_color)',
+                             config['Window Geometry'])
+            self.assertEqual(len(displays(config, 'rviz/PointCloud2')), 2)  # the rest stays
+        _, config = fitted('--node', '/fluid', '--spacing', '0.02', '--surface', 'true')
+        for cls in ('rviz/Image', 'rviz/Camera'):
+            d = displays(config, cls)[0]
+            self.assertIs(d['Enabled'], True, cls)
+            self.assertEqual(d['Image Topic'], '/fluid/rgb/image_rect_color')
 
     def test_the_shipped_config_is_already_right_for_the_default_node(self):
         with open(os.path.join(ROOT, 'config', 'pbf.rviz')) as f:
@@ -71,7 +77,8 @@ class RvizForNodeTest(unittest.TestCase):
             self.assertEqual(d['Topic'], '/fluid/particles')
             self.assertIs(d['Unreliable'], False)
         for cls in ('rviz/Image', 'rviz/Camera'):
-            self.assertIs(displays(config, cls)[0]['Enabled'], False)
+            self.assertEqual(displays(config, cls)[0]['Image Topic'],
+                             '/fluid/rgb/image_rect_color')
 
 
 if __name__ == '__main__':
