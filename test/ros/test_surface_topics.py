@@ -88,7 +88,7 @@ class SurfaceTopicsTest(unittest.TestCase):
     def test_01_no_subscriber_means_no_render_work(self):
         stats = stats_listener()
         try:
-            # Let the node start, then watch for a while: nobody subscribes to ~surface.
+            # Let the node start, then watch for a while: nobody subscribes to the images.
             stats.next(timeout=30.0)
             first = stats.next(timeout=10.0)
             time.sleep(2.0)

@@ -8,7 +8,7 @@
 namespace pbf_ros {
 
 struct SurfaceRenderStatus {
-  // A ~surface topic has a subscriber and the GL context works: frames are being rendered.
+  // An image topic (~rgb, ~depth_registered) has a subscriber and the GL context works: frames are being rendered.
   std::atomic<bool> active{false};
   // Wall time of the last frame: render, read back, convert and publish [ms].
   std::atomic<double> last_frame_ms{0.0};
