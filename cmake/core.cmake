@@ -1,4 +1,19 @@
 # pbf_core: the solver. Plain C++17 + Eigen + OpenMP + yaml-cpp; no ROS, no GL.
+
+# The hot neighbour sums, compiled twice: for the build's target and for x86-64-v3 (AVX2 +
+# FMA); NeighborSumsDispatch.cpp picks one at run time (see NeighborSums.h).
+foreach(variant base v3)
+  add_library(pbf_neighbor_sums_${variant} OBJECT src/core/NeighborSums.cpp)
+  target_link_libraries(pbf_neighbor_sums_${variant} PRIVATE OpenMP::OpenMP_CXX)
+  target_compile_options(pbf_neighbor_sums_${variant} PRIVATE -fno-trapping-math)
+  target_compile_definitions(pbf_neighbor_sums_${variant} PRIVATE
+    PBF_NEIGHBOR_SUMS_NS=neighbor_sums_${variant})
+  set_target_properties(pbf_neighbor_sums_${variant} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+endforeach()
+if(CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
+  target_compile_options(pbf_neighbor_sums_v3 PRIVATE -march=x86-64-v3)
+endif()
+
 add_library(pbf_core
   src/core/NeighborGrid.cpp
   src/core/PbfSolver.cpp
@@ -6,7 +21,9 @@ add_library(pbf_core
   src/core/ConstraintPasses.cpp
   src/core/VelocityPasses.cpp
   src/core/StepGuards.cpp
-  src/core/NeighborSums.cpp
+  src/core/NeighborSumsDispatch.cpp
+  $<TARGET_OBJECTS:pbf_neighbor_sums_base>
+  $<TARGET_OBJECTS:pbf_neighbor_sums_v3>
   src/core/SolverParams.cpp
   src/core/Scene.cpp
   src/core/Metrics.cpp

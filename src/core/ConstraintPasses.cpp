@@ -73,6 +73,7 @@ void PbfSolver::computeLambdas(float& avg_error) {
   // gradient factor instead of another sqrt and division.
   pair_gradient_.resize(grid_->indices().size());
   float* G = pair_gradient_.data();
+  if (walls) wall_gradient_.resize(n);
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -95,6 +96,7 @@ void PbfSolver::computeLambdas(float& avg_error) {
         rho += params_.rest_density * fraction;
         gx += gw.x(), gy += gw.y(), gz += gw.z();
       }
+      wall_gradient_[i] = gw;  // the delta-p pass sees the same position
     }
     density_[i] = rho;
     float c = rho * inv_rho0 - 1.0f;
@@ -193,7 +195,6 @@ void PbfSolver::computeDeltas() {
   const float* S = scorr.on ? scorr_scale_.data() : nullptr;
   const NeighborArrays arrays{P, off, nbr};
   const bool walls = params_.wall_density;
-  const SolidBoundaries solids = boundaries();
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -230,11 +231,7 @@ void PbfSolver::computeDeltas() {
       }
     }
     delta_[i] = dp;
-    if (walls && li != 0.0f) {  // lambda_i times the solids' part of grad_i C_i
-      float fraction = 0.0f;
-      Eigen::Vector3f gw = Eigen::Vector3f::Zero();
-      if (solids.density(predicted_[i], fraction, gw)) delta_[i] += li * gw;
-    }
+    if (walls) delta_[i] += li * wall_gradient_[i];  // lambda_i times the solids' part of grad_i C_i
   }
 }
 

@@ -123,7 +123,7 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
   // the buffers are then concatenated in block order, so the CSR arrays are identical for
   // any thread count.
   offsets_.resize(n + 1);
-  std::vector<std::vector<std::uint32_t>> buffers;
+  auto& buffers = thread_lists_;
   std::vector<std::size_t> block_base;
   std::atomic<bool> too_many{false};
 
@@ -134,13 +134,14 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
 #pragma omp single
     {
       buffers.resize(nt);
+      thread_filled_.assign(nt, 0);
       block_base.assign(nt + 1, 0);
     }
     const std::size_t begin = n * t / nt, end = n * (t + 1) / nt;
     auto& buf = buffers[t];
     // buf's size is its capacity: growing it by resize() would zero every candidate slot of
     // every particle first (27 cells of candidates, ~40 kept); `used` is the filled part.
-    buf.resize((end - begin) * 48);
+    if (buf.size() < (end - begin) * 48) buf.resize((end - begin) * 48);
     std::size_t used = 0;
     // All particles of a cell share their 27-cell candidate set: gather it once per cell
     // into a contiguous local copy (ascending index), then test every particle of the cell
@@ -192,11 +193,11 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
       }
       if (used > kMaxPairs) too_many = true;
     }
-    buf.resize(used);
+    thread_filled_[t] = used;
 #pragma omp barrier
 #pragma omp single
     {
-      for (int b = 0; b < nt; ++b) block_base[b + 1] = block_base[b] + buffers[b].size();
+      for (int b = 0; b < nt; ++b) block_base[b + 1] = block_base[b] + thread_filled_[b];
       if (block_base[nt] > kMaxPairs) too_many = true;
       if (!too_many) {
         indices_.resize(block_base[nt]);
@@ -204,7 +205,7 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
       }
     }
     if (!too_many) {
-      std::copy(buf.begin(), buf.end(), indices_.begin() + block_base[t]);
+      std::copy(buf.begin(), buf.begin() + thread_filled_[t], indices_.begin() + block_base[t]);
       const auto base = static_cast<std::uint32_t>(block_base[t]);
       for (std::size_t i = begin; i < end; ++i) offsets_[i] += base;
     }

@@ -1,8 +1,10 @@
 #pragma once
 // The neighbour sums of the solver's hot passes, over raw float arrays (positions and
 // velocities as packed x,y,z triples, CSR neighbour lists). Each is built twice, for
-// x86-64-v3 (AVX2 + FMA) and for plain x86-64, and the loader picks the one the CPU runs
-// (GCC target_clones): a portable binary still uses the wide registers where they exist.
+// x86-64-v3 (AVX2 + FMA) and for the build's target (plain x86-64 by default), and the
+// first call picks the one the CPU runs (NeighborSumsDispatch.cpp): a portable binary still
+// uses the wide registers where they exist. (GCC's target_clones would be simpler, but it
+// drops the `omp simd` vectorisation in the AVX2 clone.)
 // Private to pbf_core; the passes in ConstraintPasses.cpp / VelocityPasses.cpp call them
 // once per particle and do the rare and per-particle work (coincident pairs, walls).
 
@@ -56,5 +58,21 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
 // positions. k.poly6 must be the bare mass times the Poly6 coefficient.
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                    const float* velocity, const float* density);
+
+// Which build of the kernels runs: "x86-64-v3" or "build target".
+const char* neighborSumsVariant();
+
+// The two builds (NeighborSums.cpp compiled twice); callers use the functions above.
+#define PBF_DECLARE_NEIGHBOR_SUMS(ns)                                                          \
+  namespace ns {                                                                              \
+  LambdaSums lambdaSums(const NeighborArrays&, const PairConstants&, std::size_t, float*);    \
+  VectorSum deltaSums(const NeighborArrays&, float, std::size_t, const float*, const float*); \
+  DensitySum densitySums(const NeighborArrays&, const PairConstants&, std::size_t);           \
+  VectorSum xsphSums(const NeighborArrays&, const PairConstants&, std::size_t, const float*,   \
+                     const float*);                                                           \
+  }
+PBF_DECLARE_NEIGHBOR_SUMS(neighbor_sums_base)
+PBF_DECLARE_NEIGHBOR_SUMS(neighbor_sums_v3)
+#undef PBF_DECLARE_NEIGHBOR_SUMS
 
 }  // namespace pbf

@@ -54,6 +54,9 @@ class NeighborGrid {
   std::vector<std::uint32_t> order_;
   std::vector<std::uint32_t> offsets_, indices_;
   std::vector<std::uint32_t> unsorted_cell_;  // scratch
+  // Per-thread list buffers of findNeighbors, kept between calls: no allocation per step.
+  std::vector<std::vector<std::uint32_t>> thread_lists_;
+  std::vector<std::size_t> thread_filled_;  // filled entries of each
 };
 
 }  // namespace pbf

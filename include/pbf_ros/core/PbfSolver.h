@@ -122,6 +122,7 @@ class PbfSolver {
   std::vector<float> lambda_;
   std::vector<float> scorr_scale_;          // per particle bound of the s_corr push
   std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass
+  std::vector<Eigen::Vector3f> wall_gradient_;  // solids' part of grad C, lambda -> delta p
   std::vector<float> density_;
   std::vector<std::uint16_t> neighbor_count_;
   // Backups to reject a non-finite step: everything a step changes.

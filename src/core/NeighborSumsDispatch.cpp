@@ -1,0 +1,63 @@
+#include "NeighborSums.h"
+
+// Chooses, once, the build of the neighbour sums this CPU runs. Static initialisation would
+// race with other libraries' start-up code; a function-local static is initialised on first
+// use, thread-safely.
+
+namespace pbf {
+
+namespace {
+
+struct NeighborSumsTable {
+  decltype(&neighbor_sums_base::lambdaSums) lambda;
+  decltype(&neighbor_sums_base::deltaSums) delta;
+  decltype(&neighbor_sums_base::densitySums) density;
+  decltype(&neighbor_sums_base::xsphSums) xsph;
+  const char* name;
+};
+
+bool cpuRunsV3() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+         __builtin_cpu_supports("bmi2");
+#else
+  return false;
+#endif
+}
+
+const NeighborSumsTable& table() {
+  static const NeighborSumsTable t =
+      cpuRunsV3() ? NeighborSumsTable{neighbor_sums_v3::lambdaSums, neighbor_sums_v3::deltaSums,
+                                      neighbor_sums_v3::densitySums, neighbor_sums_v3::xsphSums,
+                                      "x86-64-v3"}
+                  : NeighborSumsTable{neighbor_sums_base::lambdaSums, neighbor_sums_base::deltaSums,
+                                      neighbor_sums_base::densitySums, neighbor_sums_base::xsphSums,
+                                      "build target"};
+  return t;
+}
+
+}  // namespace
+
+LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                      float* pair_gradient) {
+  return table().lambda(a, k, i, pair_gradient);
+}
+
+VectorSum deltaSums(const NeighborArrays& a, float coincident2, std::size_t i, const float* lambda,
+                    const float* pair_gradient) {
+  return table().delta(a, coincident2, i, lambda, pair_gradient);
+}
+
+DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i) {
+  return table().density(a, k, i);
+}
+
+VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                   const float* velocity, const float* density) {
+  return table().xsph(a, k, i, velocity, density);
+}
+
+const char* neighborSumsVariant() { return table().name; }
+
+}  // namespace pbf
