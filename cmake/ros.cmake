@@ -10,11 +10,13 @@ add_library(pbf_ros_node
   src/ros/FluidDiagnostics.cpp
   src/ros/FluidNode.cpp
   src/ros/FluidNodeReconfigure.cpp
+  src/ros/FluidNodeRobot.cpp
   src/ros/FluidNodeServices.cpp
   src/ros/ParamsConversion.cpp
   src/ros/RealTimePacer.cpp
   src/ros/ReconfigureRecord.cpp
   src/ros/RenderCameraParams.cpp
+  src/ros/RobotSource.cpp
   src/ros/SceneMarkers.cpp
   src/ros/SceneLoading.cpp
   src/ros/SimulationLoop.cpp
@@ -26,7 +28,7 @@ add_library(pbf_ros_node
   src/ros/TfAttachments.cpp)
 target_include_directories(pbf_ros_node PUBLIC include ${CATKIN_DEVEL_PREFIX}/include)
 # pbf_render brings its GL back-ends (OSMesa, EGL) but never libGL/libOpenGL.
-target_link_libraries(pbf_ros_node PUBLIC pbf_core pbf_render ${catkin_LIBRARIES})
+target_link_libraries(pbf_ros_node PUBLIC pbf_core pbf_render pbf_robots ${catkin_LIBRARIES})
 # The generated SimulationStats.h and FluidConfig.h must exist before we compile.
 add_dependencies(pbf_ros_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 

@@ -70,7 +70,7 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   advertise();
   const std::string error = rebuildFluid(scene, params);
   if (!error.empty()) throw std::runtime_error("cannot build the fluid: " + error);
-  applied_scene_ = scene_;
+  applied_scene_ = scene_without_robot_;
   pacer_.setFactor(config.real_time_factor);
   setRates(config.publish_rate, config.stats_rate);
   startReconfigure(config);
@@ -114,6 +114,7 @@ void FluidNode::readNodeSettings() {
     max_particles = 1000000;
   }
   max_particles_ = static_cast<std::size_t>(max_particles);
+  robot_source_ = readRobotSource(pnh_);
   double max_lag = 0.1;
   pnh_.param("max_lag", max_lag, max_lag);
   pacer_ = RealTimePacer(max_lag);

@@ -196,7 +196,9 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     next.solver = params;
     // Counted before anything is allocated: a fine spacing must not take gigabytes first.
     std::string why = next.validate();
-    if (why.empty()) why = next.checkParticleCount(max_particles_);
+    if (!why.empty()) return why;
+    std::vector<RobotLinkSolids> robot_links = addRobotSolids(next);
+    why = next.checkParticleCount(max_particles_);
     if (!why.empty()) return why;
     // A fresh solver: time and step count start again from 0; the old one keeps running
     // if anything below throws.
@@ -205,6 +207,9 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     seedAtCurrentPoses(next, *fresh);
     solver_ = std::move(fresh);
     scene_ = next;
+    scene_without_robot_ = scene;
+    scene_without_robot_.solver = params;
+    robot_links_ = std::move(robot_links);
   } catch (const std::exception& e) {
     return e.what();
   }

@@ -36,6 +36,7 @@
 #include "pbf_ros/ros/FluidDiagnostics.h"
 #include "pbf_ros/ros/RealTimePacer.h"
 #include "pbf_ros/ros/ReconfigureRecord.h"
+#include "pbf_ros/ros/RobotSource.h"
 #include "pbf_ros/ros/SimulationTasks.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
 #include "pbf_ros/ros/SurfaceRenderStatus.h"
@@ -108,6 +109,9 @@ class FluidNode {
   std::string rebuildFluid(const pbf::Scene& scene, const pbf::SolverParams& params);
   void announceScene();  // markers + static tf
   void seedAtCurrentPoses(const pbf::Scene& scene, pbf::PbfSolver& solver);
+  // --- robot links as solids (FluidNodeRobot.cpp); simulation thread ---
+  // Reads the URDF now and appends the links' solids (at their tf poses) to scene.obstacles.
+  std::vector<RobotLinkSolids> addRobotSolids(pbf::Scene& scene);
   void anchorStamps();   // stamps continue from the ROS time now (start, resume, rebuild)
   void setRates(double publish_rate, double stats_rate);
   void updateHealth();
@@ -126,6 +130,7 @@ class FluidNode {
   bool publish_clock_ = false;
   std::size_t max_particles_ = 1000000;
   HealthThresholds thresholds_;
+  RobotSource robot_source_;
 
   // ROS interface.
   ros::Publisher particles_pub_, stats_pub_, markers_pub_, clock_pub_;
@@ -151,7 +156,10 @@ class FluidNode {
 
   // Simulation thread state (set up in the constructor before the thread starts).
   std::unique_ptr<pbf::PbfSolver> solver_;
-  pbf::Scene scene_;
+  pbf::Scene scene_;                   // what runs: the scene file's plus the robot's solids
+  pbf::Scene scene_without_robot_;     // what a ~reset starts from (the URDF is read again)
+  std::vector<RobotLinkSolids> robot_links_;  // which of scene_.obstacles are whose
+  bool robot_built_once_ = false;      // later builds wait less for the links' tf
   RealTimePacer pacer_;
   bool paused_ = false;
   bool stepped_since_resume_ = false;
