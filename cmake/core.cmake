@@ -2,6 +2,10 @@
 add_library(pbf_core
   src/core/NeighborGrid.cpp
   src/core/PbfSolver.cpp
+  src/core/SolverNeighbors.cpp
+  src/core/ConstraintPasses.cpp
+  src/core/VelocityPasses.cpp
+  src/core/StepGuards.cpp
   src/core/SolverParams.cpp
   src/core/Scene.cpp
   src/core/Metrics.cpp

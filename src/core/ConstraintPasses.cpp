@@ -1,0 +1,281 @@
+#include "pbf_ros/core/PbfSolver.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "DeterministicSum.h"
+#include "PairGeometry.h"
+#include "pbf_ros/core/Boundaries.h"
+#include "pbf_ros/core/Kernels.h"
+#include "pbf_ros/core/LatticeBoundary.h"
+#include "pbf_ros/core/NeighborGrid.h"
+
+// The density constraint's passes: lambda (eq 8-11), s_corr and delta p (eq 12-14), and the
+// solids' projection of the corrected positions.
+
+namespace pbf {
+
+namespace {
+
+// s_corr is an artificial pressure, i.e. a force: the displacement it causes must scale
+// with dt^2, or a small (CFL) dt turns its fixed push into unbounded speeds (push / dt),
+// which shrinks dt further. The paper tuned k at dt = 1/60 s, so that is where the factor
+// is 1; it never exceeds 1 (larger steps get no larger push).
+constexpr float kScorrReferenceDt = 1.0f / 60.0f;
+inline float scorrTimeScale(float dt) {
+  const float r = dt / kScorrReferenceDt;
+  return std::min(1.0f, r * r);
+}
+
+// Largest displacement s_corr may cause in one iteration at the reference dt, as a
+// fraction of the spacing.
+constexpr float kMaxScorrShift = 0.1f;
+
+
+}  // namespace
+
+// The two hot passes below are written branch-free over raw float arrays so that the
+// compiler vectorises the neighbour loop (gathers + masks). Coincident pairs, which have no
+// direction, contribute nothing there; they are counted and the rare particle that has one
+// is recomputed by the exact scalar path (pairGradient) instead.
+
+Eigen::Vector3f PbfSolver::pairGradient(std::size_t i, std::uint32_t j) const {
+  const Kernels k(params_.supportRadius());
+  Pair p;
+  p.r = predicted_[i] - predicted_[j];
+  p.r2 = p.r.squaredNorm();
+  if (p.r2 >= k.h2) return Eigen::Vector3f::Zero();
+  p.rlen = std::sqrt(p.r2);
+  return spikyGradientSafe(k, p, id_[i], id_[j]);
+}
+
+void PbfSolver::computeLambdas(float& avg_error) {
+  const std::size_t n = size();
+  const Kernels k(params_.supportRadius());
+  const std::uint32_t* off = grid_->offsets().data();
+  const std::uint32_t* nbr = grid_->indices().data();
+  const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
+  const float mass = params_.particleMass();
+  const float inv_rho0 = 1.0f / params_.rest_density;
+  const float grad_scale = mass * inv_rho0;  // grad C = (m / rho0) grad W (eq 7 with mass)
+  const float self_density = mass * k.poly6(0.0f);
+  const bool unilateral = params_.unilateral_constraint;
+  const float eps = params_.cfmEpsilon();
+  const float h = k.h, h2 = k.h2, poly6c = mass * k.poly6_coef;
+  const float spiky = grad_scale * k.spiky_grad_coef;
+  const float tiny2 = kCoincident * h2;
+  const bool walls = params_.wall_density;
+  const SolidBoundaries solids = boundaries();
+  // The delta-p pass of this iteration sees the same positions: it reuses each pair's
+  // gradient factor instead of another sqrt and division.
+  pair_gradient_.resize(grid_->indices().size());
+  float* G = pair_gradient_.data();
+
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+    float rho = self_density, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
+    int coincident = 0;
+#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nbr[e];
+      const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
+      const float r2 = dx * dx + dy * dy + dz * dz;
+      const float w = std::max(h2 - r2, 0.0f);
+      rho += poly6c * w * w * w;
+      const float rlen = std::sqrt(r2);
+      const float dl = std::max(h - rlen, 0.0f);
+      const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
+      G[e] = g;
+      coincident += r2 <= tiny2 ? 1 : 0;
+      gx += g * dx;
+      gy += g * dy;
+      gz += g * dz;
+      sum_grad2 += g * g * r2;
+    }
+    if (coincident > 0) {  // rare: redo the gradients with directions for coincident pairs
+      Eigen::Vector3f gi = Eigen::Vector3f::Zero();
+      sum_grad2 = 0.0f;
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const Eigen::Vector3f g = grad_scale * pairGradient(i, nbr[e]);
+        gi += g;
+        sum_grad2 += g.squaredNorm();
+      }
+      gx = gi.x(), gy = gi.y(), gz = gi.z();
+    }
+    if (walls) {  // solids do not move with the solve: they add to grad_i C only
+      float fraction = 0.0f;
+      Eigen::Vector3f gw = Eigen::Vector3f::Zero();
+      if (solids.density(predicted_[i], fraction, gw)) {
+        rho += params_.rest_density * fraction;
+        gx += gw.x(), gy += gw.y(), gz += gw.z();
+      }
+    }
+    density_[i] = rho;
+    float c = rho * inv_rho0 - 1.0f;
+    if (unilateral) c = std::max(c, 0.0f);
+    const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
+    lambda_[i] = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
+  }
+  avg_error = static_cast<float>(
+      deterministicSum(n, [&](std::size_t i) {
+        return std::max(0.0, static_cast<double>(density_[i]) * inv_rho0 - 1.0);
+      }) / std::max<std::size_t>(n, 1));
+}
+
+// s_corr = -k (W(r) / W(dq))^n h^2 (Macklin & Mueller eq 13; the seed's eq 11 lost the
+// parentheses). It is added to lambda_i + lambda_j, which carry units of m^2 here (with the
+// particle mass in grad C); the paper's unit-mass, unit-scale form has no such factor, so
+// h^2 makes k dimensionless: the push it causes is the same fraction of h at any resolution.
+struct PbfSolver::Scorr {
+  Scorr(const SolverParams& p, const Kernels& k, float dt)
+      : on(p.scorr_k > 0.0f),
+        h2(k.h2),
+        poly6_rel(on ? k.poly6_coef / k.poly6(std::pow(p.scorr_delta_q * k.h, 2.0f)) : 0.0f),
+        k_scaled(p.scorr_k * k.h2 * scorrTimeScale(dt)),
+        n(p.scorr_n),
+        n4(p.scorr_n == 4.0f),
+        max_shift2(std::pow(kMaxScorrShift * p.particle_spacing * scorrTimeScale(dt), 2.0f)) {}
+  // -k (W(r) / W(dq))^n h^2: added to lambda_i + lambda_j of the pair at distance^2 r2.
+  float operator()(float r2) const {
+    const float w = std::max(h2 - r2, 0.0f);
+    const float rel = poly6_rel * w * w * w;
+    return -k_scaled * (n4 ? (rel * rel) * (rel * rel) : std::pow(rel, n));
+  }
+  bool on;
+  float h2, poly6_rel, k_scaled, n;
+  bool n4;
+  float max_shift2;
+};
+
+// s_corr is an artificial pressure against clustering: it may nudge a particle by at most
+// kMaxScorrShift of the spacing per iteration (at the reference dt). Within that (k up to
+// ~1) it acts as Macklin & Mueller describe; beyond, it saturates instead of pumping energy
+// into the fluid (the stress suite's s_corr k = 10 case). Each particle gets the factor that
+// would bound its own push; a pair then uses the smaller factor of its two particles, so the
+// pair's pushes stay equal and opposite (momentum is conserved when the bound acts).
+void PbfSolver::computeScorrScales(const Scorr& scorr) {
+  const std::size_t n = size();
+  const std::uint32_t* off = grid_->offsets().data();
+  const std::uint32_t* nbr = grid_->indices().data();
+  const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
+  const float* G = pair_gradient_.data();
+  const float grad_scale = params_.particleMass() / params_.rest_density;
+  const float tiny2 = kCoincident * scorr.h2;
+  scorr_scale_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+    float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+    int coincident = 0;
+#pragma omp simd reduction(+ : sx, sy, sz, coincident)
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nbr[e];
+      const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
+      const float r2 = dx * dx + dy * dy + dz * dz;
+      const float g = scorr(r2) * G[e];
+      coincident += r2 <= tiny2 ? 1 : 0;
+      sx += g * dx;
+      sy += g * dy;
+      sz += g * dz;
+    }
+    Eigen::Vector3f push(sx, sy, sz);
+    if (coincident > 0) {  // rare: exact path with directions for coincident pairs
+      push.setZero();
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        push += scorr((predicted_[i] - predicted_[j]).squaredNorm()) * grad_scale * pairGradient(i, j);
+      }
+    }
+    const float len2 = push.squaredNorm();
+    scorr_scale_[i] = len2 > scorr.max_shift2 ? std::sqrt(scorr.max_shift2 / len2) : 1.0f;
+  }
+}
+
+void PbfSolver::computeDeltas() {
+  const std::size_t n = size();
+  const Kernels k(params_.supportRadius());
+  const std::uint32_t* off = grid_->offsets().data();
+  const std::uint32_t* nbr = grid_->indices().data();
+  const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
+  const float* L = lambda_.data();
+  const float* G = pair_gradient_.data();  // (m / rho0) grad W / r, from the lambda pass
+  const float grad_scale = params_.particleMass() / params_.rest_density;
+  const float tiny2 = kCoincident * k.h2;
+  // With k = 0 the loop without s_corr runs: no cost.
+  const Scorr scorr(params_, k, current_dt_);
+  if (scorr.on) computeScorrScales(scorr);
+  const float* S = scorr.on ? scorr_scale_.data() : nullptr;
+  const bool walls = params_.wall_density;
+  const SolidBoundaries solids = boundaries();
+
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+    const float li = L[i];
+    float dx_sum = 0.0f, dy_sum = 0.0f, dz_sum = 0.0f;
+    int coincident = 0;
+    if (!scorr.on) {
+#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
+        const float g = (li + L[j]) * G[e];
+        coincident += dx * dx + dy * dy + dz * dz <= tiny2 ? 1 : 0;
+        dx_sum += g * dx;
+        dy_sum += g * dy;
+        dz_sum += g * dz;
+      }
+    } else {
+      const float si = S[i];
+#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
+        const float r2 = dx * dx + dy * dy + dz * dz;
+        const float g = (li + L[j] + scorr(r2) * std::min(si, S[j])) * G[e];
+        coincident += r2 <= tiny2 ? 1 : 0;
+        dx_sum += g * dx;
+        dy_sum += g * dy;
+        dz_sum += g * dz;
+      }
+    }
+    Eigen::Vector3f dp(dx_sum, dy_sum, dz_sum);
+    if (coincident > 0) {  // rare: exact path with directions for coincident pairs
+      dp.setZero();
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        float factor = li + L[j];
+        if (scorr.on)
+          factor += scorr((predicted_[i] - predicted_[j]).squaredNorm()) * std::min(S[i], S[j]);
+        dp += factor * grad_scale * pairGradient(i, j);
+      }
+    }
+    delta_[i] = dp;
+    if (walls && li != 0.0f) {  // lambda_i times the solids' part of grad_i C_i
+      float fraction = 0.0f;
+      Eigen::Vector3f gw = Eigen::Vector3f::Zero();
+      if (solids.density(predicted_[i], fraction, gw)) delta_[i] += li * gw;
+    }
+  }
+}
+
+SolidBoundaries PbfSolver::boundaries() const {
+  // Particle centres stay half a spacing from every surface: sphere surfaces touch it,
+  // and the initial lattice (first layer at d/2) is already in place.
+  SolidBoundaries solids(container_, container_pose_, obstacles_, *lattice_,
+                         0.5f * params_.particle_spacing);
+  solids.setPreviousPoses(prev_container_pose_, &prev_obstacle_pose_);
+  return solids;
+}
+
+void PbfSolver::applyDeltasAndBoundary() {
+  const std::size_t n = size();
+  const SolidBoundaries solids = boundaries();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) predicted_[i] = solids.project(predicted_[i] + delta_[i]);
+}
+
+}  // namespace pbf

@@ -1,0 +1,88 @@
+#include "pbf_ros/core/PbfSolver.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pbf_ros/core/NeighborGrid.h"
+
+// Neighbour lists: built on a Morton-sorted grid, reused within the skin, and rebuilt as
+// soon as any particle (moved by the step or by the solver's corrections) leaves it.
+
+namespace pbf {
+
+void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
+  const std::size_t n = order.size();
+  // Gather into reused scratch arrays and swap: no allocation on the per-step path.
+  auto permute = [&](auto& v, auto& scratch) {
+    scratch.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < n; ++k) scratch[k] = v[order[k]];
+    v.swap(scratch);
+  };
+  permute(position_, reorder_scratch_);
+  permute(velocity_, reorder_scratch_);
+  permute(predicted_, reorder_scratch_);
+  permute(id_, reorder_id_scratch_);
+}
+
+void PbfSolver::updateNeighbors(StepStats& stats) {
+  const std::size_t n = size();
+  const float h = params_.supportRadius();
+  const float skin = params_.neighbor_skin * h;
+  if (skin > 0.0f && lists_valid_ && build_position_.size() == n) {
+    // Reuse while every particle moved less than half the skin since the build: then no
+    // pair closer than h now was farther than h + skin then.
+    const float limit2 = 0.25f * skin * skin;
+    float moved2 = 0.0f;
+#pragma omp parallel for reduction(max : moved2) schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      moved2 = std::max(moved2, (predicted_[i] - build_position_[i]).squaredNorm());
+    if (moved2 < limit2) {
+      stats.neighbor_lists_reused = true;
+      return;
+    }
+  }
+  rebuildNeighborLists(predicted_);
+}
+
+void PbfSolver::rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points) {
+  // The grid covers the fluid's own bounds, not the whole container: a small fluid in a
+  // large container costs what it costs in a small one. Clipped to the container (plus h),
+  // where strays outside it share the border cells: one far-away particle must not coarsen
+  // the grid for everyone.
+  const float radius = params_.supportRadius() * (1.0f + params_.neighbor_skin);
+  Eigen::AlignedBox3f domain;
+  for (const auto& p : points) domain.extend(p);
+  if (!container_.isEmpty()) {
+    Eigen::AlignedBox3f walls;
+    for (int c = 0; c < 8; ++c)
+      walls.extend(container_pose_ * container_.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)));
+    walls.extend(walls.min() - Eigen::Vector3f::Constant(radius)).extend(walls.max() + Eigen::Vector3f::Constant(radius));
+    domain = domain.intersection(walls);
+  }
+  reorder(grid_->build(points, radius, domain));
+  grid_->findNeighbors(points, radius);  // `points` is one of the arrays reorder() permuted
+  if (params_.neighbor_skin > 0.0f) build_position_ = points;
+  lists_valid_ = true;
+}
+
+// Reused lists stay exact while every particle is within half the skin of where it was at
+// the build: then no pair closer than h now was farther than h + skin then. The solver's
+// corrections move particles too, so this is checked after each of them, not only once
+// per step; a particle that went too far triggers a rebuild right there.
+void PbfSolver::keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats) {
+  const float skin = params_.neighbor_skin * params_.supportRadius();
+  if (skin <= 0.0f) return;  // built once per step on the predicted positions (the seed)
+  const float limit2 = 0.25f * skin * skin;
+  float moved2 = 0.0f;
+#pragma omp parallel for reduction(max : moved2) schedule(static)
+  for (std::size_t i = 0; i < size(); ++i)
+    moved2 = std::max(moved2, (points[i] - build_position_[i]).squaredNorm());
+  if (moved2 < limit2) return;
+  rebuildNeighborLists(points);
+  ++stats.neighbor_rebuilds_in_step;
+}
+
+}  // namespace pbf

@@ -1,0 +1,140 @@
+#include "pbf_ros/core/PbfSolver.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "PairGeometry.h"
+#include "pbf_ros/core/Boundaries.h"
+#include "pbf_ros/core/Kernels.h"
+#include "pbf_ros/core/NeighborGrid.h"
+
+// The velocity-level passes that follow the constraint solve: velocities from the corrected
+// positions (with wall friction), density and vorticity, XSPH viscosity and confinement.
+
+namespace pbf {
+
+void PbfSolver::updateVelocities(float dt) {
+  const std::size_t n = size();
+  const float inv_dt = 1.0f / dt;
+  const SolidBoundaries solids = boundaries();
+  const float friction = params_.wall_friction;
+  const float layer = params_.particle_spacing;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    // With zero iterations the prediction itself may have left the box.
+    Eigen::Vector3f p = solids.project(predicted_[i]);
+    Eigen::Vector3f normal, surface_motion;
+    if (friction > 0.0f && solids.contact(p, layer, normal, surface_motion)) {
+      // Wall shear tau = rho0 c_f |u_t| u_t acts on the layer of thickness d next to the
+      // surface: du_t/dt = -c_f |u_t| u_t / d. Backward Euler over the step gives
+      // u_t' = u_t / (1 + c_f |u_t| dt / d), in displacements (t = u_t dt) below: stable at
+      // any dt and converging to the same law as dt shrinks. The normal part of the motion
+      // is the projection's business.
+      const Eigen::Vector3f rel = (p - position_[i]) - surface_motion;
+      const Eigen::Vector3f tangential = rel - rel.dot(normal) * normal;
+      const float keep = 1.0f / (1.0f + friction * tangential.norm() / layer);
+      p -= (1.0f - keep) * tangential;
+      p = solids.project(p);
+    }
+    velocity_[i] = (p - position_[i]) * inv_dt;
+    position_[i] = p;
+  }
+}
+
+void PbfSolver::computeDensityAndVorticity() {
+  const std::size_t n = size();
+  const Kernels k(params_.supportRadius());
+  const auto& off = grid_->offsets();
+  const auto& nbr = grid_->indices();
+  const float mass = params_.particleMass();
+  const float self_density = mass * k.poly6(0.0f);
+  const bool vorticity = params_.vorticity_epsilon > 0.0f;
+  if (vorticity) vorticity_.resize(n);
+  neighbor_count_.resize(n);
+  const bool walls = params_.wall_density;
+  const SolidBoundaries solids = boundaries();
+
+  // Density first (vorticity needs every density).
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f pi = position_[i];
+    float rho = self_density;
+    std::uint32_t count = 0;
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const float r2 = (pi - position_[nbr[e]]).squaredNorm();
+      if (r2 >= k.h2) continue;
+      rho += mass * k.poly6(r2);
+      ++count;
+    }
+    if (walls) {
+      float fraction = 0.0f;
+      Eigen::Vector3f unused = Eigen::Vector3f::Zero();
+      if (solids.density(pi, fraction, unused)) rho += params_.rest_density * fraction;
+    }
+    density_[i] = rho;
+    neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
+  }
+  if (!vorticity) return;
+  // omega_i = sum_j V_j grad_i W_ij x (v_j - v_i): the SPH curl of the velocity.
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f pi = position_[i], vi = velocity_[i];
+    Eigen::Vector3f w = Eigen::Vector3f::Zero();
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nbr[e];
+      Pair p;
+      p.r = pi - position_[j];
+      p.r2 = p.r.squaredNorm();
+      if (p.r2 >= k.h2) continue;
+      p.rlen = std::sqrt(p.r2);
+      w += (mass / density_[j]) * spikyGradientSafe(k, p, id_[i], id_[j]).cross(velocity_[j] - vi);
+    }
+    vorticity_[i] = w;
+  }
+}
+
+void PbfSolver::applyViscosityAndVorticity(float dt) {
+  const std::size_t n = size();
+  const Kernels k(params_.supportRadius());
+  const auto& off = grid_->offsets();
+  const auto& nbr = grid_->indices();
+  const float mass = params_.particleMass();
+  const float c = params_.xsphCoefficient(dt);
+  const bool vorticity = params_.vorticity_epsilon > 0.0f;
+  const float veps = params_.vorticity_epsilon * k.h;  // f = epsilon h (N x omega)
+
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f pi = position_[i], vi = velocity_[i];
+    Eigen::Vector3f xsph = Eigen::Vector3f::Zero();
+    Eigen::Vector3f eta = Eigen::Vector3f::Zero();
+    const float wi = vorticity ? vorticity_[i].norm() : 0.0f;
+    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+      const std::uint32_t j = nbr[e];
+      Pair p;
+      p.r = pi - position_[j];
+      p.r2 = p.r.squaredNorm();
+      if (p.r2 >= k.h2) continue;
+      const float vol = mass / density_[j];
+      // XSPH (eq 10) with the m_j / rho_j factor.
+      if (c > 0.0f) xsph += (vol * k.poly6(p.r2)) * (velocity_[j] - vi);
+      if (vorticity) {
+        p.rlen = std::sqrt(p.r2);
+        // eta = grad |omega|, SPH difference form (exact for a constant field).
+        eta += (vol * (vorticity_[j].norm() - wi)) * spikyGradientSafe(k, p, id_[i], id_[j]);
+      }
+    }
+    Eigen::Vector3f v = vi + c * xsph;
+    if (vorticity) {
+      const float eta_len = eta.norm();
+      // No gradient, no direction: confinement has nothing to amplify there.
+      if (eta_len > 1e-12f) v += (dt * veps) * (eta / eta_len).cross(vorticity_[i]);
+    }
+    new_velocity_[i] = v;
+  }
+  velocity_.swap(new_velocity_);
+}
+
+}  // namespace pbf
