@@ -6,6 +6,8 @@ add_library(pbf_core
   src/core/ConstraintPasses.cpp
   src/core/VelocityPasses.cpp
   src/core/StepGuards.cpp
+  src/core/WrenchTracking.cpp
+  src/core/SolidWrench.cpp
   src/core/SolverParams.cpp
   src/core/Scene.cpp
   src/core/Metrics.cpp

@@ -260,6 +260,7 @@ void PbfSolver::computeDeltas() {
       if (solids.density(predicted_[i], fraction, gw)) delta_[i] += li * gw;
     }
   }
+  if (track_wrenches_ && walls) recordBoundaryDensityPush(solids);
 }
 
 SolidBoundaries PbfSolver::boundaries() const {
@@ -274,6 +275,7 @@ SolidBoundaries PbfSolver::boundaries() const {
 void PbfSolver::applyDeltasAndBoundary() {
   const std::size_t n = size();
   const SolidBoundaries solids = boundaries();
+  if (track_wrenches_) return applyDeltasRecordingBoundary(solids);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) predicted_[i] = solids.project(predicted_[i] + delta_[i]);
 }
