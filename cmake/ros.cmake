@@ -22,6 +22,8 @@ add_library(pbf_ros_node
   src/ros/SimulationLoop.cpp
   src/ros/SimulationTasks.cpp
   src/ros/SnapshotBuffer.cpp
+  src/ros/SolidWrenchPublishers.cpp
+  src/ros/SolidWrenchTargets.cpp
   src/ros/StatsConversion.cpp
   src/ros/SurfaceImageConversion.cpp
   src/ros/SurfaceRenderThread.cpp

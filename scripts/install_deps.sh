@@ -17,6 +17,8 @@ PACKAGES=(
   python3-rostopic python3-rosservice
   # robots as solids: URDF, and meshes through geometric_shapes (assimp); check_urdf
   liburdf-dev libgeometric-shapes-dev liburdfdom-tools
+  # tf for a robot description (robot_solids rostest, robot demos)
+  ros-robot-state-publisher
   # headless rendering
   libosmesa6-dev libegl-dev libgl-dev libgles-dev libpng-dev
   # plots, and looking at the demo like a user

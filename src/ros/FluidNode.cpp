@@ -115,6 +115,12 @@ void FluidNode::readNodeSettings() {
   }
   max_particles_ = static_cast<std::size_t>(max_particles);
   robot_source_ = readRobotSource(pnh_);
+  pnh_.param("wrench_rate", wrench_rate_, wrench_rate_);
+  if (!(wrench_rate_ > 0.0 && wrench_rate_ <= 1000.0)) {
+    ROS_WARN("pbf_node: ~wrench_rate %g is not in (0, 1000] Hz; using 30", wrench_rate_);
+    wrench_rate_ = 30.0;
+  }
+  track_wrenches_ = readBool(pnh_, "track_wrenches", track_wrenches_);
   double max_lag = 0.1;
   pnh_.param("max_lag", max_lag, max_lag);
   pacer_ = RealTimePacer(max_lag);
@@ -168,6 +174,7 @@ void FluidNode::advertise() {
   stats_pub_ = pnh_.advertise<SimulationStats>("stats", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  wrench_pubs_ = std::make_unique<SolidWrenchPublishers>(pnh_, wrench_rate_, track_wrenches_);
 
   reset_srv_ = pnh_.advertiseService("reset", &FluidNode::onResetService, this);
   pause_srv_ = pnh_.advertiseService("pause", &FluidNode::onPauseService, this);

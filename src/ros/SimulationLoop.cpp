@@ -10,6 +10,7 @@
 #include "pbf_ros/ros/DomainTransform.h"
 #include "pbf_ros/ros/FluidNode.h"
 #include "pbf_ros/ros/SceneMarkers.h"
+#include "pbf_ros/ros/SolidWrenchTargets.h"
 #include "pbf_ros/ros/StatsConversion.h"
 #include "pbf_ros/core/SceneSetup.h"
 
@@ -90,8 +91,12 @@ void FluidNode::stepOnce() {
   } catch (const std::exception& e) {  // a non-finite pose: keep the previous one
     ROS_WARN_THROTTLE(10.0, "pbf_node: ignoring an attached frame's pose: %s", e.what());
   }
+  // Wrenches are measured only while someone wants them (a ~wrench subscriber).
+  solver_->setWrenchTracking(wrench_pubs_->wanted());
   const double time_before = solver_->time();
   last_stats_ = solver_->step();
+  if (!last_stats_.failed) wrench_pubs_->accumulate(scene_, *solver_, last_stats_.dt);
+  if (!solver_->wrenchTracking()) last_stats_.skipped_stages.push_back("wrench");
   sim_clock_ += solver_->time() - time_before;
   ++state_version_;
   nan_recoveries_ += static_cast<std::uint32_t>(last_stats_.nan_retries);
@@ -130,6 +135,7 @@ void FluidNode::publishDue(double wall, bool force) {
     next_stats_wall_ = nextDue(next_stats_wall_, stats_period_, wall);
     publishStats();
   }
+  wrench_pubs_->publishDue(wall, stamp());
   const double snapshot_rate = snapshots_.requestedRate();
   if (snapshot_rate > 0.0 && (force || wall >= next_snapshot_wall_)) {
     next_snapshot_wall_ = nextDue(next_snapshot_wall_, 1.0 / snapshot_rate, wall);
@@ -177,6 +183,7 @@ void FluidNode::publishStats() {
   context.render_skipped = !surface_status_.active.load();
   context.render_ms = surface_status_.last_frame_ms.load();
   context.render_frames = surface_status_.frames.load();
+  context.wrench_tracked = wrench_pubs_->takeTotal(context.solids_wrench);
   stats_pub_.publish(toStatsMessage(last_stats_, context));
 }
 
@@ -210,6 +217,7 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     scene_without_robot_ = scene;
     scene_without_robot_.solver = params;
     robot_links_ = std::move(robot_links);
+    wrench_pubs_->setTargets(wrenchTargets(scene_, robot_links_, domain_frame_));
   } catch (const std::exception& e) {
     return e.what();
   }

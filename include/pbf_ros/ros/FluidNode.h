@@ -39,6 +39,7 @@
 #include "pbf_ros/ros/RobotSource.h"
 #include "pbf_ros/ros/SimulationTasks.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
+#include "pbf_ros/ros/SolidWrenchPublishers.h"
 #include "pbf_ros/ros/SurfaceRenderStatus.h"
 #include "pbf_ros/ros/TfAttachments.h"
 
@@ -131,6 +132,8 @@ class FluidNode {
   std::size_t max_particles_ = 1000000;
   HealthThresholds thresholds_;
   RobotSource robot_source_;
+  double wrench_rate_ = 30.0;     // ~wrench/* [Hz]
+  bool track_wrenches_ = false;   // measure wrenches even with no ~wrench subscriber (~stats)
 
   // ROS interface.
   ros::Publisher particles_pub_, stats_pub_, markers_pub_, clock_pub_;
@@ -180,6 +183,7 @@ class FluidNode {
   SnapshotBuffer snapshots_;
   SurfaceRenderStatus surface_status_;
   std::unique_ptr<TfAttachments> attachments_;  // moves solids attached to tf frames
+  std::unique_ptr<SolidWrenchPublishers> wrench_pubs_;  // ~wrench/<solid>
   std::atomic<bool> running_{false};
   std::thread sim_thread_;
 
