@@ -8,6 +8,8 @@ add_library(pbf_core
   src/core/StepGuards.cpp
   src/core/WrenchTracking.cpp
   src/core/SolidWrench.cpp
+  src/core/RigidBody.cpp
+  src/core/FloatingBodies.cpp
   src/core/SolverParams.cpp
   src/core/Scene.cpp
   src/core/Metrics.cpp

@@ -8,3 +8,7 @@ find_package(benchmark REQUIRED)
 add_executable(pbf_step_benchmark src/tools/step_benchmark.cpp)
 target_link_libraries(pbf_step_benchmark pbf_core benchmark::benchmark)
 target_compile_definitions(pbf_step_benchmark PRIVATE PBF_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+
+# The fluid's force on a held solid against Archimedes at a chosen resolution (README).
+add_executable(pbf_hydrostatic_forces src/tools/hydrostatic_forces.cpp)
+target_link_libraries(pbf_hydrostatic_forces pbf_core)

@@ -91,11 +91,17 @@ void FluidNode::stepOnce() {
   } catch (const std::exception& e) {  // a non-finite pose: keep the previous one
     ROS_WARN_THROTTLE(10.0, "pbf_node: ignoring an attached frame's pose: %s", e.what());
   }
-  // Wrenches are measured only while someone wants them (a ~wrench subscriber).
+  // Wrenches are measured only while someone wants them (a ~wrench subscriber) or a body
+  // floats on them.
   solver_->setWrenchTracking(wrench_pubs_->wanted());
+  floating_.prepare(*solver_);
   const double time_before = solver_->time();
   last_stats_ = solver_->step();
-  if (!last_stats_.failed) wrench_pubs_->accumulate(scene_, *solver_, last_stats_.dt);
+  if (!last_stats_.failed) {
+    wrench_pubs_->accumulate(scene_, *solver_, last_stats_.dt);  // at the poses of the step
+    floating_.afterStep(*solver_, last_stats_.dt);               // poses for the next one
+    publishFloatingPoses();
+  }
   if (!solver_->wrenchTracking()) last_stats_.skipped_stages.push_back("wrench");
   sim_clock_ += solver_->time() - time_before;
   ++state_version_;
@@ -212,11 +218,13 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     auto fresh = std::make_unique<pbf::PbfSolver>();
     pbf::setUpSolver(next, *fresh);  // parameters, container, obstacles, particles
     seedAtCurrentPoses(next, *fresh);
+    pbf::FloatingBodies floating = pbf::makeFloatingBodies(next);
     solver_ = std::move(fresh);
     scene_ = next;
     scene_without_robot_ = scene;
     scene_without_robot_.solver = params;
     robot_links_ = std::move(robot_links);
+    floating_ = std::move(floating);
     wrench_pubs_->setTargets(wrenchTargets(scene_, robot_links_, domain_frame_));
   } catch (const std::exception& e) {
     return e.what();
@@ -231,8 +239,38 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
   pacer_.restart(wallNow(), sim_clock_);
   next_cloud_wall_ = next_stats_wall_ = next_snapshot_wall_ = 0.0;  // publish promptly
   announceScene();
+  last_floating_tf_wall_ = 0.0;
+  publishFloatingPoses();
   updateHealth();
   return "";
+}
+
+// Floating bodies' poses on tf (fluid_domain -> their frame), at most every 10 ms of wall
+// time: rviz draws their markers there, and other nodes can follow them.
+void FluidNode::publishFloatingPoses() {
+  if (floating_.empty()) return;
+  const double wall = wallNow();
+  if (wall - last_floating_tf_wall_ < 0.01) return;
+  last_floating_tf_wall_ = wall;
+  if (!floating_tf_) floating_tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+  const ros::Time now = stamp();
+  for (const auto& [index, body] : floating_.bodies()) {
+    const Eigen::Isometry3f& pose = body.shape().pose;
+    if (!pose.matrix().allFinite() || index >= scene_.obstacles.size()) continue;
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = now;
+    t.header.frame_id = domain_frame_;
+    t.child_frame_id = scene_.obstacles[index].frame;
+    t.transform.translation.x = pose.translation().x();
+    t.transform.translation.y = pose.translation().y();
+    t.transform.translation.z = pose.translation().z();
+    const Eigen::Quaternionf q(pose.linear());
+    t.transform.rotation.x = q.x();
+    t.transform.rotation.y = q.y();
+    t.transform.rotation.z = q.z();
+    t.transform.rotation.w = q.w();
+    floating_tf_->sendTransform(t);
+  }
 }
 
 // A reset or scene switch while attached frames have moved: the container, the obstacles
@@ -254,7 +292,7 @@ void FluidNode::seedAtCurrentPoses(const pbf::Scene& scene, pbf::PbfSolver& solv
   };
   if (const auto* pose = poseOf(scene.container_frame)) solver.setContainerPose(*pose);
   for (std::size_t k = 0; k < scene.obstacles.size(); ++k)
-    if (const auto* pose = poseOf(scene.obstacles[k].frame))
+    if (const auto* pose = scene.floats(k) ? nullptr : poseOf(scene.obstacles[k].frame))
       solver.setObstaclePose(k, *pose * scene.obstacles[k].offset);
   bool moved = false;
   for (std::size_t b = 0; b < scene.fluid.size(); ++b) moved = moved || poseOf(scene.blockFrame(b));

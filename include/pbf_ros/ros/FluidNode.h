@@ -28,9 +28,11 @@
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
 
 #include <pbf_ros/FluidConfig.h>
 
+#include "pbf_ros/core/FloatingBodies.h"
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
 #include "pbf_ros/ros/FluidDiagnostics.h"
@@ -113,6 +115,7 @@ class FluidNode {
   // --- robot links as solids (FluidNodeRobot.cpp); simulation thread ---
   // Reads the URDF now and appends the links' solids (at their tf poses) to scene.obstacles.
   std::vector<RobotLinkSolids> addRobotSolids(pbf::Scene& scene);
+  void publishFloatingPoses();  // tf of the scene's floating bodies
   void anchorStamps();   // stamps continue from the ROS time now (start, resume, rebuild)
   void setRates(double publish_rate, double stats_rate);
   void updateHealth();
@@ -184,6 +187,9 @@ class FluidNode {
   SurfaceRenderStatus surface_status_;
   std::unique_ptr<TfAttachments> attachments_;  // moves solids attached to tf frames
   std::unique_ptr<SolidWrenchPublishers> wrench_pubs_;  // ~wrench/<solid>
+  pbf::FloatingBodies floating_;       // the scene's dynamic obstacles (moved after each step)
+  std::unique_ptr<tf2_ros::TransformBroadcaster> floating_tf_;
+  double last_floating_tf_wall_ = 0.0;
   std::atomic<bool> running_{false};
   std::thread sim_thread_;
 
