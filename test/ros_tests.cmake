@@ -32,6 +32,7 @@ add_rostest(test/node_lifecycle.test DEPENDENCIES pbf_node)
 add_rostest(test/hostile_input.test DEPENDENCIES pbf_node)
 add_rostest(test/reset_moved_frame.test DEPENDENCIES pbf_node)
 add_rostest(test/robot_solids.test DEPENDENCIES pbf_node)
+add_rostest(test/floating_bodies.test DEPENDENCIES pbf_node)
 
 # Robots as solids (pbf_robots): URDF strings and the shipped arm's meshes, no master.
 catkin_add_gtest(test_ros_urdf_solids test/ros/test_urdf_solids.cpp)

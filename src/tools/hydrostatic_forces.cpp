@@ -2,8 +2,8 @@
 // Archimedes, at a chosen resolution (the README's "Forces on solids" figures; the unit
 // test test_core_solid_wrenches checks the shipped cases). No ROS.
 //
-//   pbf_hydrostatic_forces SHAPE SPACING [TANK DEPTH SIZE HEIGHT [WARM SPAN]]
-//     SHAPE    sphere (SIZE = radius) or box (SIZE = half width; half height 0.6 SIZE)
+//   pbf_hydrostatic_forces SHAPE SPACING [TANK DEPTH SIZE HEIGHT [WARM SPAN [HALF_HEIGHT]]]
+//     SHAPE    sphere (SIZE = radius) or box (SIZE = half width; HALF_HEIGHT, default 0.6 SIZE)
 //     SPACING  particle spacing [m]; every other solver setting is the shipped default
 //     TANK     square tank width [m] (0.2), DEPTH fluid depth [m] (0.15)
 //     SIZE     [m] (0.045), HEIGHT of the solid's centre [m] (0.07)
@@ -28,7 +28,7 @@ double arg(int argc, char** argv, int i, double fallback) {
 
 int main(int argc, char** argv) {
   if (argc < 3 || (std::string(argv[1]) != "sphere" && std::string(argv[1]) != "box")) {
-    std::fprintf(stderr, "usage: pbf_hydrostatic_forces sphere|box SPACING [TANK DEPTH SIZE HEIGHT [WARM SPAN]]\n");
+    std::fprintf(stderr, "usage: pbf_hydrostatic_forces sphere|box SPACING [TANK DEPTH SIZE HEIGHT [WARM SPAN [HALF_HEIGHT]]]\n");
     return 2;
   }
   const bool sphere = std::string(argv[1]) == "sphere";
@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   const float tank = static_cast<float>(arg(argc, argv, 3, 0.2)), depth = static_cast<float>(arg(argc, argv, 4, 0.15));
   const float size = static_cast<float>(arg(argc, argv, 5, 0.045)), height = static_cast<float>(arg(argc, argv, 6, 0.07));
   const double warm = arg(argc, argv, 7, 1.0), span = arg(argc, argv, 8, 0.5);
+  const float half_height = static_cast<float>(arg(argc, argv, 9, 0.6 * size));
 
   pbf::Scene scene;
   scene.name = "hydrostatic_forces";
@@ -52,8 +53,8 @@ int main(int argc, char** argv) {
     volume = 4.0 / 3.0 * M_PI * std::pow(size, 3);
   } else {
     solid.shape = pbf::Obstacle::Shape::Box;
-    solid.half_extents = Eigen::Vector3f(size, size, 0.6f * size);
-    volume = 8.0 * size * size * 0.6 * size;
+    solid.half_extents = Eigen::Vector3f(size, size, half_height);
+    volume = 8.0 * size * size * half_height;
   }
   solid.pose.translation() = Eigen::Vector3f(0.5f * tank, 0.5f * tank, height);
   scene.obstacles.push_back(solid);
