@@ -136,48 +136,59 @@ void RigidBody::collide(const Eigen::AlignedBox3f& box_f, const Eigen::Isometry3
   const Eigen::Matrix3d wall_axes = container_pose.linear().cast<double>();
   const Eigen::AlignedBox3d box = box_f.cast<double>();
   const std::vector<ContactSphere> points = contactSpheres(shape_);
-  // Two passes: resolving one wall's contact can move another point into a wall.
+  struct Contact {
+    Eigen::Vector3d arm, normal;  // lever from the origin to the touching point; into the box
+  };
+  std::vector<Contact> contacts;
+  // Positions: move the body out of each wall it went through (two passes: leaving one wall
+  // may push a point through another); remember every touching point.
   for (int pass = 0; pass < 2; ++pass) {
-    bool touched = false;
+    bool moved = false;
     for (int a = 0; a < 3; ++a) {
       for (int side = 0; side < 2; ++side) {
-        const double sign = side == 0 ? 1.0 : -1.0;  // inward normal along axis a
-        const Eigen::Vector3d normal = sign * wall_axes.col(a);
+        const Eigen::Vector3d normal = (side == 0 ? 1.0 : -1.0) * wall_axes.col(a);
         const Eigen::Matrix3d r = q_.toRotationMatrix();
         double deepest = 0.0;
-        std::vector<Eigen::Vector3d> contacts;
         for (const ContactSphere& c : points) {
           const Eigen::Vector3d p = x_ + r * c.local;
           const double q = (to_container * p)[a];
           const double depth = side == 0 ? box.min()[a] + c.radius - q : q + c.radius - box.max()[a];
-          if (depth <= 0.0) continue;
+          if (depth < 0.0) continue;
           deepest = std::max(deepest, depth);
-          contacts.push_back(p - c.radius * normal - x_);  // lever arm to the touching point
+          if (pass == 0) contacts.push_back({p - c.radius * normal - x_, normal});
         }
-        if (contacts.empty()) continue;
-        touched = true;
-        x_ += deepest * normal;
-        const Eigen::Matrix3d inverse = r * inverse_inertia_body_ * r.transpose();
-        for (const Eigen::Vector3d& arm : contacts) {
-          const Eigen::Vector3d u = v_ + w_.cross(arm);  // velocity of the touching point
-          const double into = u.dot(normal);
-          if (into >= 0.0) continue;
-          const double k = 1.0 / mass_ + normal.dot((inverse * arm.cross(normal)).cross(arm));
-          const double j = -into / k;
-          Eigen::Vector3d impulse = j * normal;
-          // Coulomb friction: stop the sliding if the normal impulse allows it.
-          const Eigen::Vector3d slide = u - into * normal;
-          if (slide.norm() > 1e-12) {
-            const Eigen::Vector3d t = slide.normalized();
-            const double kt = 1.0 / mass_ + t.dot((inverse * arm.cross(t)).cross(arm));
-            impulse -= std::min(slide.norm() / kt, kContactFriction * j) * t;
-          }
-          v_ += impulse / mass_;
-          w_ += inverse * arm.cross(impulse);
+        if (deepest > 0.0) {
+          x_ += deepest * normal;
+          moved = true;
         }
       }
     }
-    if (!touched) break;
+    if (!moved) break;
+  }
+  // Velocities: inelastic impulses at the touching points with Coulomb friction, iterated so
+  // that a body resting on several points (a box on its face) comes to rest on all of them.
+  const Eigen::Matrix3d r = q_.toRotationMatrix();
+  const Eigen::Matrix3d inverse = r * inverse_inertia_body_ * r.transpose();
+  for (int iteration = 0; iteration < 16 && !contacts.empty(); ++iteration) {
+    bool changed = false;
+    for (const Contact& c : contacts) {
+      const Eigen::Vector3d u = v_ + w_.cross(c.arm);  // velocity of the touching point
+      const double into = u.dot(c.normal);
+      if (into >= -1e-9) continue;
+      const double k = 1.0 / mass_ + c.normal.dot((inverse * c.arm.cross(c.normal)).cross(c.arm));
+      const double j = -into / k;
+      Eigen::Vector3d impulse = j * c.normal;
+      const Eigen::Vector3d slide = u - into * c.normal;
+      if (slide.norm() > 1e-12) {
+        const Eigen::Vector3d t = slide.normalized();
+        const double kt = 1.0 / mass_ + t.dot((inverse * c.arm.cross(t)).cross(c.arm));
+        impulse -= std::min(slide.norm() / kt, kContactFriction * j) * t;
+      }
+      v_ += impulse / mass_;
+      w_ += inverse * c.arm.cross(impulse);
+      changed = true;
+    }
+    if (!changed) break;
   }
   shape_.pose = Eigen::Translation3f(x_.cast<float>()) * q_.cast<float>();
 }

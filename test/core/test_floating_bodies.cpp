@@ -156,4 +156,33 @@ TEST(FloatingBodies, DroppedBallBobsComesToRestAndMakesNoEnergy) {
   EXPECT_LT(gain, 0.1 * drop);
 }
 
+TEST(FloatingBodies, RigidBodyFallsOntoTheFloorTipsFlatAndRests) {
+  // No fluid: gravity and the container's inelastic contact alone. A box released 10 cm up,
+  // tilted by 0.3 rad, lands on an edge, tips onto a face and stays.
+  pbf::Obstacle box;
+  box.shape = pbf::Obstacle::Shape::Box;
+  box.half_extents = Eigen::Vector3f(0.05f, 0.04f, 0.02f);
+  box.pose = Eigen::Translation3f(0.2f, 0.2f, 0.12f) * Eigen::AngleAxisf(0.3f, Eigen::Vector3f::UnitY());
+  const double mass = 1.0;
+  pbf::RigidBody body(box, mass, pbf::solidInertia(box, mass));
+  const Eigen::AlignedBox3f container(Eigen::Vector3f::Zero(), Eigen::Vector3f(0.4f, 0.4f, 0.4f));
+  const double e0 = body.kineticEnergy() + mass * 9.81 * 0.12;
+  for (int k = 0; k < 1200; ++k) {  // 2 s at 1/600 s
+    body.step(pbf::Wrench(), Eigen::Vector3d(0, 0, -9.81), 1.0 / 600.0);
+    body.collide(container, Eigen::Isometry3f::Identity());
+    const double e = body.kineticEnergy() + mass * 9.81 * body.shape().pose.translation().z();
+    ASSERT_LT(e, e0 + 1e-3) << "energy from nowhere at step " << k;
+  }
+  const Eigen::Isometry3f& pose = body.shape().pose;
+  const double tilt = std::acos(std::min(1.0f, std::abs(pose.linear()(2, 2))));
+  std::printf("box on the floor: centre z %.4f m (half height 0.02), tilt %.4f rad, speed %.2e m/s\n",
+              pose.translation().z(), tilt, body.linearVelocity().norm());
+  EXPECT_NEAR(pose.translation().z(), 0.02, 1e-3);
+  EXPECT_LT(tilt, 0.02);
+  EXPECT_LT(body.linearVelocity().norm(), 1e-2);
+  EXPECT_LT(body.angularVelocity().norm(), 0.1);
+  EXPECT_THROW(pbf::RigidBody(box, -1.0, pbf::solidInertia(box, 1.0)), std::invalid_argument);
+  EXPECT_THROW(pbf::RigidBody(box, 1.0, Eigen::Matrix3d::Zero()), std::invalid_argument);
+}
+
 }  // namespace

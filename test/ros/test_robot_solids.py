@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """A robot's links as solids (issue 12, part 1 and 2), on probe_robot.urdf: its box link in
 the tank keeps the fluid out and feels the water's buoyancy; a link whose mesh is missing
-and a link without tf are reported by name while the rest takes part; a new URDF on the
-parameter server is read on ~reset."""
+a degenerate mesh and a link without tf are reported by name while the rest takes part; a
+new URDF on the parameter server is read on ~reset, and one that does not parse is reported
+while the fluid runs on."""
 import threading
 import time
 import unittest
@@ -116,7 +117,7 @@ class RobotSolidsTest(unittest.TestCase):
         # Bad links are reported by name on every (re)load, and a new URDF is read on ~reset:
         # the probe becomes a sphere.
         log = RosoutRecorder()
-        markers = Latest(NODE + '/markers', MarkerArray)
+        marker_topic = Latest(NODE + '/markers', MarkerArray)
         urdf = rospy.get_param('/robot_description')
         rospy.set_param('/robot_description', urdf.replace(
             '<box size="0.16 0.16 0.16"/>', '<sphere radius="0.08"/>'))
@@ -125,10 +126,24 @@ class RobotSolidsTest(unittest.TestCase):
         answer = reset()
         self.assertTrue(answer.success, answer.message)
         log.wait_for(Log.WARN, "'lost'", 'no_such_mesh.stl')
+        log.wait_for(Log.WARN, "'flat'", 'no volume')
         log.wait_for(Log.ERROR, "'swing'", 'no tf')
-        markers = markers.current_or_next(
+        markers = marker_topic.current_or_next(
             timeout=10.0, condition=lambda m: any(p.type == Marker.SPHERE for p in probe_markers(m)))
         self.assertEqual([m.type for m in probe_markers(markers)], [Marker.SPHERE])
+        stats = stats_listener()
+        try:
+            s = stats.next(timeout=20.0, condition=lambda m: m.sim_time > 0.3)
+            self.assertGreater(s.particle_count, 500)
+        finally:
+            stats.close()
+
+        # A URDF that does not parse: said so, and the fluid runs on without the robot.
+        rospy.set_param('/robot_description', '<robot name="broken"><link name="a">')
+        answer = reset()
+        self.assertTrue(answer.success, answer.message)
+        log.wait_for(Log.WARN, 'not a valid URDF')
+        marker_topic.current_or_next(timeout=10.0, condition=lambda m: not probe_markers(m))
         stats = stats_listener()
         try:
             s = stats.next(timeout=20.0, condition=lambda m: m.sim_time > 0.3)
