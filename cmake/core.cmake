@@ -6,6 +6,7 @@ add_library(pbf_core
   src/core/ConstraintPasses.cpp
   src/core/VelocityPasses.cpp
   src/core/StepGuards.cpp
+  src/core/NeighborSums.cpp
   src/core/WrenchTracking.cpp
   src/core/SolidWrench.cpp
   src/core/RigidBody.cpp

@@ -1,5 +1,6 @@
-# pbf_ros_node: the ROS layer (FluidNode, the surface render thread and their plain
-# conversion functions), and pbf_node.
+# pbf_ros_node: the ROS layer (FluidDriver = FluidNode + the surface render thread, and
+# their plain conversion functions); pbf_node and pbf_ros/FluidNodelet are thin shells over
+# FluidDriver.
 # The only code that knows ROS; it translates between the graph and pbf_core.
 include_directories(${catkin_INCLUDE_DIRS})
 
@@ -8,7 +9,9 @@ add_library(pbf_ros_node
   src/ros/CloudConversion.cpp
   src/ros/DomainTransform.cpp
   src/ros/FluidDiagnostics.cpp
+  src/ros/FluidDriver.cpp
   src/ros/FluidNode.cpp
+  src/ros/FluidNodeDiagnostics.cpp
   src/ros/FluidNodeReconfigure.cpp
   src/ros/FluidNodeRobot.cpp
   src/ros/FluidNodeServices.cpp
@@ -27,7 +30,8 @@ add_library(pbf_ros_node
   src/ros/StatsConversion.cpp
   src/ros/SurfaceImageConversion.cpp
   src/ros/SurfaceRenderThread.cpp
-  src/ros/TfAttachments.cpp)
+  src/ros/TfAttachments.cpp
+  src/ros/TopicRateDiagnostic.cpp)
 target_include_directories(pbf_ros_node PUBLIC include ${CATKIN_DEVEL_PREFIX}/include)
 # pbf_render brings its GL back-ends (OSMesa, EGL) but never libGL/libOpenGL.
 target_link_libraries(pbf_ros_node PUBLIC pbf_core pbf_render pbf_robots ${catkin_LIBRARIES})
@@ -37,8 +41,12 @@ add_dependencies(pbf_ros_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NA
 add_executable(pbf_node src/nodes/pbf_node.cpp)
 target_link_libraries(pbf_node pbf_ros_node)
 
-install(TARGETS pbf_ros_node pbf_node
+# The nodelet plugin (nodelet_plugins.xml, exported in package.xml). Its library name is
+# the one the xml gives (lib/libpbf_fluid_nodelet).
+add_library(pbf_fluid_nodelet src/nodelet/FluidNodelet.cpp)
+target_link_libraries(pbf_fluid_nodelet pbf_ros_node)
+
+install(TARGETS pbf_ros_node pbf_fluid_nodelet pbf_node
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
-install(DIRECTORY launch config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})

@@ -5,6 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   # toolchain and libraries of the ROS-free core
+  # (libbenchmark-dev only for the pbf_step_benchmark developer tool; optional)
   build-essential cmake libeigen3-dev libyaml-cpp-dev libgtest-dev libbenchmark-dev
   # ROS 1 from Debian (installs into /usr)
   catkin ros-core-dev libroscpp-dev libroslib-dev ros-message-generation ros-message-runtime
@@ -15,6 +16,14 @@ PACKAGES=(
   libimage-transport-dev librostest-dev python3-rostest python3-rospy python3-roslaunch
   python3-rosmsg python3-sensor-msgs python3-std-srvs python3-rosgraph-msgs rosbash
   python3-rostopic python3-rosservice
+  # the nodelet (pbf_ros/FluidNodelet) and the `nodelet` manager/loader executable; the
+  # depth-to-cloud example and its test run depth_image_proc's nodelets beside it (its
+  # plugin description is in the -dev package, which brings OpenCV's headers along)
+  libnodeletlib-dev libnodeletlib-tools pluginlib-dev libdepth-image-proc-dev
+  # what Debian's rosdep maps package.xml's other keys to (`rosdep check` stays quiet;
+  # only its librviz-dev for the rviz key is left out: the rviz package below runs rviz)
+  python3-visualization-msgs python3-diagnostic-updater python3-tf2-geometry-msgs
+  image-transport-tools python3-nodelet ros-tf2-msgs
   # robots as solids: URDF, and meshes through geometric_shapes (assimp); check_urdf
   liburdf-dev libgeometric-shapes-dev liburdfdom-tools
   # tf for a robot description (robot_solids rostest, robot demos)

@@ -33,6 +33,21 @@ add_rostest(test/hostile_input.test DEPENDENCIES pbf_node)
 add_rostest(test/reset_moved_frame.test DEPENDENCIES pbf_node)
 add_rostest(test/robot_solids.test DEPENDENCIES pbf_node)
 add_rostest(test/floating_bodies.test DEPENDENCIES pbf_node)
+# The nodelet in a manager beside depth_image_proc's point_cloud_xyzrgb.
+add_rostest(test/fluid_nodelet.test DEPENDENCIES pbf_fluid_nodelet)
+
+# The launch files parse and name packages and executables that exist.
+find_package(roslaunch REQUIRED)
+roslaunch_add_file_check(launch USE_TEST_DEPENDENCIES)
+
+# scripts/rviz_for_node.py fits the rviz config to a node (no master).
+add_test(NAME test_rviz_for_node
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/test_rviz_for_node.py)
+
+# The install space alone runs fluid.launch (cmake --install into a temporary prefix).
+add_test(NAME test_install_space
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/install_space.sh ${CMAKE_BINARY_DIR})
+set_tests_properties(test_install_space PROPERTIES TIMEOUT 120)
 
 # Robots as solids (pbf_robots): URDF strings and the shipped arm's meshes, no master.
 catkin_add_gtest(test_ros_urdf_solids test/ros/test_urdf_solids.cpp)

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "DeterministicSum.h"
+#include "NeighborSums.h"
 #include "PairGeometry.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
@@ -63,9 +64,9 @@ void PbfSolver::computeLambdas(float& avg_error) {
   const float self_density = mass * k.poly6(0.0f);
   const bool unilateral = params_.unilateral_constraint;
   const float eps = params_.cfmEpsilon();
-  const float h = k.h, h2 = k.h2, poly6c = mass * k.poly6_coef;
-  const float spiky = grad_scale * k.spiky_grad_coef;
-  const float tiny2 = kCoincident * h2;
+  const NeighborArrays arrays{P, off, nbr};
+  const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, grad_scale * k.spiky_grad_coef,
+                         kCoincident * k.h2};
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
   // The delta-p pass of this iteration sees the same positions: it reuses each pair's
@@ -75,27 +76,9 @@ void PbfSolver::computeLambdas(float& avg_error) {
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-    float rho = self_density, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
-    int coincident = 0;
-#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      const std::uint32_t j = nbr[e];
-      const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
-      const float r2 = dx * dx + dy * dy + dz * dz;
-      const float w = std::max(h2 - r2, 0.0f);
-      rho += poly6c * w * w * w;
-      const float rlen = std::sqrt(r2);
-      const float dl = std::max(h - rlen, 0.0f);
-      const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
-      G[e] = g;
-      coincident += r2 <= tiny2 ? 1 : 0;
-      gx += g * dx;
-      gy += g * dy;
-      gz += g * dz;
-      sum_grad2 += g * g * r2;
-    }
-    if (coincident > 0) {  // rare: redo the gradients with directions for coincident pairs
+    const LambdaSums s = lambdaSums(arrays, pc, i, G);
+    float rho = self_density + s.rho, gx = s.gx, gy = s.gy, gz = s.gz, sum_grad2 = s.sum_grad2;
+    if (s.coincident > 0) {  // rare: redo the gradients with directions for coincident pairs
       Eigen::Vector3f gi = Eigen::Vector3f::Zero();
       sum_grad2 = 0.0f;
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
@@ -208,6 +191,7 @@ void PbfSolver::computeDeltas() {
   const Scorr scorr(params_, k, current_dt_);
   if (scorr.on) computeScorrScales(scorr);
   const float* S = scorr.on ? scorr_scale_.data() : nullptr;
+  const NeighborArrays arrays{P, off, nbr};
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
 
@@ -218,16 +202,8 @@ void PbfSolver::computeDeltas() {
     float dx_sum = 0.0f, dy_sum = 0.0f, dz_sum = 0.0f;
     int coincident = 0;
     if (!scorr.on) {
-#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
-      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-        const std::uint32_t j = nbr[e];
-        const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
-        const float g = (li + L[j]) * G[e];
-        coincident += dx * dx + dy * dy + dz * dz <= tiny2 ? 1 : 0;
-        dx_sum += g * dx;
-        dy_sum += g * dy;
-        dz_sum += g * dz;
-      }
+      const VectorSum s = deltaSums(arrays, tiny2, i, L, G);
+      dx_sum = s.x, dy_sum = s.y, dz_sum = s.z, coincident = s.coincident;
     } else {
       const float si = S[i];
 #pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)

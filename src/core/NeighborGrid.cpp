@@ -138,7 +138,10 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
     }
     const std::size_t begin = n * t / nt, end = n * (t + 1) / nt;
     auto& buf = buffers[t];
-    buf.reserve((end - begin) * 40);
+    // buf's size is its capacity: growing it by resize() would zero every candidate slot of
+    // every particle first (27 cells of candidates, ~40 kept); `used` is the filled part.
+    buf.resize((end - begin) * 48);
+    std::size_t used = 0;
     // All particles of a cell share their 27-cell candidate set: gather it once per cell
     // into a contiguous local copy (ascending index), then test every particle of the cell
     // against it with a branch-free loop.
@@ -175,20 +178,21 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
         cz[c] = q.z();
       }
       for (; i < cell_end; ++i) {
-        offsets_[i] = static_cast<std::uint32_t>(buf.size());  // block-local until the merge
+        offsets_[i] = static_cast<std::uint32_t>(used);  // block-local until the merge
         const float xi = pts[i].x(), yi = pts[i].y(), zi = pts[i].z();
-        std::size_t pos = buf.size();
-        buf.resize(pos + m);
+        std::size_t pos = used;
+        if (buf.size() < pos + m) buf.resize(std::max(2 * buf.size(), pos + m));
         std::uint32_t* out = buf.data();
         for (std::size_t c = 0; c < m; ++c) {
           const float dx = cx[c] - xi, dy = cy[c] - yi, dz = cz[c] - zi;
           out[pos] = cand[c];
           pos += (dx * dx + dy * dy + dz * dz < r2) & (cand[c] != i);
         }
-        buf.resize(pos);
+        used = pos;
       }
-      if (buf.size() > kMaxPairs) too_many = true;
+      if (used > kMaxPairs) too_many = true;
     }
+    buf.resize(used);
 #pragma omp barrier
 #pragma omp single
     {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "NeighborSums.h"
 #include "PairGeometry.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
@@ -75,24 +76,24 @@ void PbfSolver::computeDensityAndVorticity() {
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
 
+  const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(),
+                             nbr.data()};
+  const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, 0.0f, 0.0f};
+
   // Density first (vorticity needs every density).
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f pi = position_[i];
-    float rho = self_density;
-    std::uint32_t count = 0;
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      const float r2 = (pi - position_[nbr[e]]).squaredNorm();
-      if (r2 >= k.h2) continue;
-      rho += mass * k.poly6(r2);
-      ++count;
-    }
+    const DensitySum s = densitySums(arrays, pc, i);
+    const float rho = self_density + s.rho;
+    const std::uint32_t count = s.count;
+    float wall = 0.0f;
     if (walls) {
       float fraction = 0.0f;
       Eigen::Vector3f unused = Eigen::Vector3f::Zero();
-      if (solids.density(pi, fraction, unused)) rho += params_.rest_density * fraction;
+      if (solids.density(pi, fraction, unused)) wall = params_.rest_density * fraction;
     }
-    density_[i] = rho;
+    density_[i] = rho + wall;
     neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
   }
   if (!vorticity) return;
@@ -124,29 +125,38 @@ void PbfSolver::applyViscosityAndVorticity(float dt) {
   const bool vorticity = params_.vorticity_epsilon > 0.0f;
   const float veps = params_.vorticity_epsilon * k.h;  // f = epsilon h (N x omega)
 
+  const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(),
+                             nbr.data()};
+  const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, 0.0f, 0.0f};
+  const float* V = velocity_.empty() ? nullptr : velocity_[0].data();
+  if (vorticity) {  // |omega| once per particle, not once per pair
+    vorticity_norm_.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) vorticity_norm_[i] = vorticity_[i].norm();
+  }
+
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f pi = position_[i], vi = velocity_[i];
-    Eigen::Vector3f xsph = Eigen::Vector3f::Zero();
-    Eigen::Vector3f eta = Eigen::Vector3f::Zero();
-    const float wi = vorticity ? vorticity_[i].norm() : 0.0f;
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      const std::uint32_t j = nbr[e];
-      Pair p;
-      p.r = pi - position_[j];
-      p.r2 = p.r.squaredNorm();
-      if (p.r2 >= k.h2) continue;
-      const float vol = mass / density_[j];
-      // XSPH (eq 10) with the m_j / rho_j factor.
-      if (c > 0.0f) xsph += (vol * k.poly6(p.r2)) * (velocity_[j] - vi);
-      if (vorticity) {
-        p.rlen = std::sqrt(p.r2);
-        // eta = grad |omega|, SPH difference form (exact for a constant field).
-        eta += (vol * (vorticity_[j].norm() - wi)) * spikyGradientSafe(k, p, id_[i], id_[j]);
-      }
+    Eigen::Vector3f v = vi;
+    if (c > 0.0f) {  // XSPH (eq 10) with the m_j / rho_j factor
+      const VectorSum s = xsphSums(arrays, pc, i, V, density_.data());
+      v += c * Eigen::Vector3f(s.x, s.y, s.z);
     }
-    Eigen::Vector3f v = vi + c * xsph;
     if (vorticity) {
+      // eta = grad |omega|, SPH difference form (exact for a constant field).
+      Eigen::Vector3f eta = Eigen::Vector3f::Zero();
+      const float wi = vorticity_norm_[i];
+      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+        const std::uint32_t j = nbr[e];
+        Pair p;
+        p.r = pi - position_[j];
+        p.r2 = p.r.squaredNorm();
+        if (p.r2 >= k.h2) continue;
+        p.rlen = std::sqrt(p.r2);
+        eta += (mass / density_[j] * (vorticity_norm_[j] - wi)) *
+               spikyGradientSafe(k, p, id_[i], id_[j]);
+      }
       const float eta_len = eta.norm();
       // No gradient, no direction: confinement has nothing to amplify there.
       if (eta_len > 1e-12f) v += (dt * veps) * (eta / eta_len).cross(vorticity_[i]);

@@ -39,7 +39,20 @@ bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fallback)
 }  // namespace
 
 FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : nh_(nh), pnh_(private_nh), record_(private_nh) {
+    : nh_(nh),
+      pnh_(private_nh),
+      record_(private_nh),
+      cloud_rate_("topic " + private_nh.resolveName("particles"),
+                  [this] {
+                    if (particles_pub_.getNumSubscribers() == 0) return "no subscriber";
+                    return paused_ ? "paused (a state is published once)" : "";
+                  }),
+      stats_rate_("topic " + private_nh.resolveName("stats"),
+                  [this] { return stats_pub_.getNumSubscribers() == 0 ? "no subscriber" : ""; }),
+      image_rate_("topic " + private_nh.resolveName("rgb/image_rect_color"),
+                  [this] { return surfaceIdle(surface_status_.image_subscribers); }),
+      depth_rate_("topic " + private_nh.resolveName("depth_registered/image_rect"),
+                  [this] { return surfaceIdle(surface_status_.depth_subscribers); }) {
   // Before anything reads a parameter: values the previous run's reconfigure server left
   // on the master are not the user's (a relaunch starts like a first launch).
   const std::set<std::string> forgotten = record_.forgetPreviousRun();
@@ -180,12 +193,7 @@ void FluidNode::advertise() {
   pause_srv_ = pnh_.advertiseService("pause", &FluidNode::onPauseService, this);
   step_srv_ = pnh_.advertiseService("step", &FluidNode::onStepService, this);
 
-  diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
-  diagnostics_->setHardwareID("pbf_solver");
-  diagnostics_->add("simulation", this, &FluidNode::diagnose);
-  // Wall timer + force_update: diagnostics keep coming while sim time is paused.
-  diagnostics_timer_ = nh_.createWallTimer(
-      ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->force_update(); });
+  startDiagnostics();
   master_timer_ = nh_.createWallTimer(ros::WallDuration(1.0),
                                       [this](const ros::WallTimerEvent&) { watchMaster(); });
 }
@@ -242,28 +250,6 @@ void FluidNode::notifyRenderSettings() {
 void FluidNode::sendStaticTransform(const geometry_msgs::TransformStamped& transform) {
   std::lock_guard<std::mutex> lock(tf_static_mutex_);
   tf_static_.sendTransform(transform);
-}
-
-void FluidNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  HealthSample sample;
-  {
-    std::lock_guard<std::mutex> lock(health_mutex_);
-    sample = health_;
-    health_.nan_recoveries_recent = 0;
-    health_.failed_steps_recent = 0;
-  }
-  reportHealth(sample, thresholds_, status);
-  // The surface renderer's work (its own thread; see SurfaceRenderThread).
-  const bool rendering = surface_status_.active.load();
-  if (surface_status_.unavailable.load()) {
-    status.add("surface rendering", "unavailable: no GL context (see the node's log)");
-    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,
-                        "no surface rendering (GL back-end failed)");
-  } else {
-    status.add("surface rendering", rendering ? "active (subscribed)" : "idle (no subscriber)");
-  }
-  status.add("surface frames rendered", surface_status_.frames.load());
-  status.add("surface frame time [ms]", rendering ? surface_status_.last_frame_ms.load() : 0.0);
 }
 
 }  // namespace pbf_ros

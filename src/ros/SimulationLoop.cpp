@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <boost/make_shared.hpp>
 #include <rosgraph_msgs/Clock.h>
 
 #include "pbf_ros/ros/CloudConversion.h"
@@ -161,15 +162,19 @@ void FluidNode::publishCloud(bool force) {
   if (!force && !wanted && cloud_version_ == state_version_) return;
   cloud_version_ = state_version_;
   const auto start = SteadyClock::now();
-  cloud_.header.stamp = stamp();
-  cloud_.header.frame_id = domain_frame_;
+  // Subscribers in this process (nodelets) hold the very object published: fill a fresh
+  // one unless they have all let go of the last (then its buffer is reused).
+  if (!cloud_ || !cloud_.unique()) cloud_ = boost::make_shared<sensor_msgs::PointCloud2>();
+  cloud_->header.stamp = stamp();
+  cloud_->header.frame_id = domain_frame_;
   const std::size_t dropped = fillParticleCloud(solver_->positions(), solver_->velocities(),
-                                                solver_->densities(), cloud_);
+                                                solver_->densities(), *cloud_);
   if (dropped > 0) {
     ROS_ERROR_THROTTLE(5.0, "pbf_node: %zu particles with non-finite values left out of ~particles",
                        dropped);
   }
-  particles_pub_.publish(cloud_);
+  particles_pub_.publish(boost::shared_ptr<const sensor_msgs::PointCloud2>(cloud_));
+  cloud_rate_.tick();
   cloud_ms_ = std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();
   cloud_skipped_ = false;
 }
@@ -190,7 +195,8 @@ void FluidNode::publishStats() {
   context.render_ms = surface_status_.last_frame_ms.load();
   context.render_frames = surface_status_.frames.load();
   context.wrench_tracked = wrench_pubs_->takeTotal(context.solids_wrench);
-  stats_pub_.publish(toStatsMessage(last_stats_, context));
+  stats_pub_.publish(boost::make_shared<const SimulationStats>(toStatsMessage(last_stats_, context)));
+  stats_rate_.tick();
 }
 
 void FluidNode::publishClock() {

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <boost/make_shared.hpp>
 #include <ros/package.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
@@ -12,6 +13,7 @@
 #include "pbf_ros/render/FluidRenderer.h"
 #include "pbf_ros/render/GlBackend.h"
 #include "pbf_ros/ros/CameraInfoConversion.h"
+#include "pbf_ros/ros/FluidNode.h"
 #include "pbf_ros/ros/SurfaceImageConversion.h"
 
 namespace pbf_ros {
@@ -79,12 +81,11 @@ SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh) {
 }
 
 SurfaceRenderThread::SurfaceRenderThread(ros::NodeHandle private_nh, const SurfaceStartup& startup,
-                                         SnapshotBuffer& snapshots, SurfaceRenderStatus& status,
-                                         PoseSink send_pose)
+                                         FluidNode& node)
     : startup_(startup),
-      snapshots_(snapshots),
-      status_(status),
-      send_pose_(std::move(send_pose)),
+      node_(node),
+      snapshots_(node.snapshots()),
+      status_(node.surfaceStatus()),
       transport_(private_nh) {
   // Every new connection (image or camera_info, any transport) gets a frame even when the
   // fluid has not changed since the last one (a paused simulation).
@@ -92,10 +93,10 @@ SurfaceRenderThread::SurfaceRenderThread(ros::NodeHandle private_nh, const Surfa
       [this](const image_transport::SingleSubscriberPublisher&) { onNewSubscriber(); };
   const ros::SubscriberStatusCallback info_connected =
       [this](const ros::SingleSubscriberPublisher&) { onNewSubscriber(); };
-  image_pub_ = transport_.advertiseCamera("surface/image_raw", 1, image_connected,
+  image_pub_ = transport_.advertiseCamera("rgb/image_rect_color", 1, image_connected,
                                           image_transport::SubscriberStatusCallback(),
                                           info_connected, ros::SubscriberStatusCallback());
-  depth_pub_ = transport_.advertiseCamera("surface/depth/image_raw", 1, image_connected,
+  depth_pub_ = transport_.advertiseCamera("depth_registered/image_rect", 1, image_connected,
                                           image_transport::SubscriberStatusCallback(),
                                           info_connected, ros::SubscriberStatusCallback());
   thread_ = std::thread(&SurfaceRenderThread::run, this);
@@ -134,7 +135,7 @@ void SurfaceRenderThread::configure(const FluidConfig& config,
     configured_ = true;
     last_pose_ = pose;
   }
-  if (moved && send_pose_) send_pose_(pose);
+  if (moved) node_.sendStaticTransform(pose);
   wake_.notify_all();
 }
 
@@ -158,7 +159,7 @@ void SurfaceRenderThread::run() {
              renderer->glDescription().c_str(), startup_.shader_dir.c_str());
   } catch (const std::exception& e) {
     ROS_ERROR("pbf_node: no surface rendering: cannot set up the '%s' GL back-end (~render_backend): "
-              "%s. The simulation keeps running; ~surface topics stay silent.",
+              "%s. The simulation keeps running; the ~rgb and ~depth_registered images stay silent.",
               startup_.backend.c_str(), e.what());
     status_.unavailable = true;
   }
@@ -178,6 +179,8 @@ void SurfaceRenderThread::run() {
 
     const int image_count = static_cast<int>(image_pub_.getNumSubscribers());
     const int depth_count = static_cast<int>(depth_pub_.getNumSubscribers());
+    status_.image_subscribers = image_count;
+    status_.depth_subscribers = depth_count;
     const bool active = renderer && configured && (image_count > 0 || depth_count > 0);
     snapshots_.setRequestedRate(active ? settings.rate : 0.0);
     status_.active = active;
@@ -248,14 +251,22 @@ void SurfaceRenderThread::renderAndPublish(pbf::FluidRenderer& renderer,
   std_msgs::Header header;
   header.stamp = ros::Time(snapshot.stamp);
   header.frame_id = startup_.camera_frame;
-  const sensor_msgs::CameraInfo info = toCameraInfo(settings.camera, header);
+  // Fresh messages every frame: subscribers in this process may still hold the last ones.
+  const auto info = boost::make_shared<const sensor_msgs::CameraInfo>(
+      toCameraInfo(settings.camera, header));
   if (image) {
-    sensor_msgs::Image msg;
-    if (toColorImage(out_, header, msg)) image_pub_.publish(msg, info);
+    auto msg = boost::make_shared<sensor_msgs::Image>();
+    if (toColorImage(out_, header, *msg)) {
+      image_pub_.publish(sensor_msgs::ImageConstPtr(msg), info);
+      node_.imageRate().tick();
+    }
   }
   if (depth) {
-    sensor_msgs::Image msg;
-    if (toDepthImage(out_, header, msg)) depth_pub_.publish(msg, info);
+    auto msg = boost::make_shared<sensor_msgs::Image>();
+    if (toDepthImage(out_, header, *msg)) {
+      depth_pub_.publish(sensor_msgs::ImageConstPtr(msg), info);
+      node_.depthRate().tick();
+    }
   }
   status_.last_frame_ms =
       std::chrono::duration<double, std::milli>(SteadyClock::now() - start).count();

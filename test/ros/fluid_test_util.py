@@ -8,6 +8,8 @@ from pbf_ros.msg import SimulationStats
 from sensor_msgs.msg import PointCloud2
 
 NODE = '/fluid'
+# The node's health on /diagnostics (diagnostic_updater names it '<node>: <task>').
+SIMULATION = NODE[1:] + ': simulation'
 
 
 class Latest:
@@ -36,6 +38,28 @@ class Latest:
                 remaining = deadline - time.time()
                 if remaining <= 0:
                     raise AssertionError('no suitable message within %.1f s' % timeout)
+                self._cond.wait(remaining)
+
+    def settled(self, key, timeout=10.0):
+        """Waits for two consecutive messages (arriving after this call) with the same key
+        and returns the later: e.g. key=step_count after ~pause returns. Messages published
+        before the service took effect may still be on their way; the first of them is not
+        the paused state."""
+        deadline = time.time() + timeout
+        with self._cond:
+            start = self.count
+            previous = None
+            while True:
+                if self.count > start:
+                    if previous is not None and self.count > previous[0] and \
+                            key(self.msg) == previous[1]:
+                        return self.msg
+                    if previous is None or self.count > previous[0]:
+                        previous = (self.count, key(self.msg))
+                remaining = deadline - time.time()
+                if remaining <= 0:
+                    raise AssertionError('no two consecutive messages agreed within %.1f s' %
+                                         timeout)
                 self._cond.wait(remaining)
 
     def current_or_next(self, timeout=10.0, condition=lambda m: True):

@@ -91,7 +91,7 @@ TEST(CameraInfoConversion, TransformAndKProjectLikeTheRenderer) {
   }
 }
 
-TEST(SurfaceImageConversion, ColourIsRgba8AndDepthIs32FC1WithNaNForNoFluid) {
+TEST(SurfaceImageConversion, ColourIsRgb8AndDepthIs32FC1WithNaNForNoFluid) {
   pbf::RenderOutput out;
   out.width = 3;
   out.height = 2;
@@ -102,12 +102,14 @@ TEST(SurfaceImageConversion, ColourIsRgba8AndDepthIs32FC1WithNaNForNoFluid) {
   sensor_msgs::Image colour, depth;
   ASSERT_TRUE(pbf_ros::toColorImage(out, someHeader(), colour));
   ASSERT_TRUE(pbf_ros::toDepthImage(out, someHeader(), depth));
-  EXPECT_EQ(colour.encoding, sensor_msgs::image_encodings::RGBA8);
+  EXPECT_EQ(colour.encoding, sensor_msgs::image_encodings::RGB8);
   EXPECT_EQ(colour.width, 3u);
   EXPECT_EQ(colour.height, 2u);
-  EXPECT_EQ(colour.step, 12u);
-  EXPECT_EQ(colour.data.size(), 24u);
-  EXPECT_EQ(colour.data[4 * 5], 5);  // last pixel, red
+  EXPECT_EQ(colour.step, 9u);
+  EXPECT_EQ(colour.data.size(), 18u);
+  EXPECT_EQ(colour.data[3 * 5], 5);       // last pixel, red
+  EXPECT_EQ(colour.data[3 * 5 + 1], 10);  // green
+  EXPECT_EQ(colour.data[3 * 5 + 2], 20);  // blue; the alpha is dropped
   EXPECT_EQ(depth.encoding, sensor_msgs::image_encodings::TYPE_32FC1);
   EXPECT_EQ(depth.step, 12u);
   ASSERT_EQ(depth.data.size(), 24u);

@@ -44,8 +44,9 @@ class HostileInputTest(unittest.TestCase):
     def assert_still_running(self, particle_count):
         """The running scene is what the server reports, and it keeps stepping."""
         self.assertEqual(self.client.get_configuration(timeout=10.0)['scene'], self.running)
-        first = self.stats.next(timeout=20.0)
-        later = self.stats.next(timeout=20.0, condition=lambda m: m.step_count > first.step_count)
+        # Steps beyond the last one seen (not "the next message", which may predate the call).
+        seen = self.stats.current_or_next(timeout=20.0).step_count
+        later = self.stats.next(timeout=20.0, condition=lambda m: m.step_count > seen)
         self.assertEqual(later.particle_count, particle_count)
 
     def test_scenes_that_fail_are_refused_and_the_server_shows_the_running_one(self):

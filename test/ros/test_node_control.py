@@ -85,8 +85,10 @@ class NodeControlTest(unittest.TestCase):
     def test_pause_freezes_sim_time_and_step_advances_exactly_one(self):
         response = self.pause(True)
         self.assertTrue(response.success, response.message)
-        # Paused stats report a real-time factor of 0 (an earlier message may still arrive).
-        first = self.stats.next(timeout=10.0, condition=lambda m: m.real_time_factor == 0.0)
+        # Stats published before the pause took effect may still arrive: wait until the step
+        # counter stands still, not for "the next message".
+        first = self.stats.settled(key=lambda m: m.step_count, timeout=10.0)
+        self.assertEqual(first.real_time_factor, 0.0)
         time.sleep(0.5)
         later = self.stats.next(timeout=10.0)
         self.assertEqual(first.sim_time, later.sim_time)
@@ -187,9 +189,9 @@ class NodeControlTest(unittest.TestCase):
         # them; NaN is what reaches the node, and the node refuses it (above).
         config = self.reconfigure.update_configuration({'gravity_z': float('inf')})
         self.assertEqual(config['gravity_z'], 100.0)
-        # The simulation carries on, finite.
-        before = self.stats.next(timeout=10.0)
-        after = self.stats.next(timeout=10.0, condition=lambda m: m.step_count > before.step_count)
+        # The simulation carries on, finite: steps beyond the last one seen.
+        seen = self.stats.current_or_next(timeout=10.0).step_count
+        after = self.stats.next(timeout=10.0, condition=lambda m: m.step_count > seen)
         self.assertTrue(math.isfinite(after.max_speed))
 
     def test_bad_scene_at_startup_exits_non_zero_naming_it(self):

@@ -1,18 +1,20 @@
 #!/usr/bin/python3
 """pbf_node's ROS interface: topics and their types, the cloud layout, lazy cloud building,
-latched container markers, the static transform and /diagnostics."""
+latched container markers, the static transform and /diagnostics (health, the rate of the
+cloud against ~publish_rate, the updater's ~diagnostic_period)."""
 import math
 import time
 import unittest
 
 import rospy
 import rostest
-from diagnostic_msgs.msg import DiagnosticArray
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from sensor_msgs.msg import PointField
 from tf2_msgs.msg import TFMessage
 
-from fluid_test_util import NODE, Latest, cloud_listener, cloud_points, stats_listener
+from fluid_test_util import NODE, SIMULATION, Latest, cloud_listener, cloud_points, stats_listener
 
+PUBLISH_RATE = 10.0  # node_interface.test's ~publish_rate
 EXPECTED_TYPES = {
     NODE + '/particles': 'sensor_msgs/PointCloud2',
     NODE + '/stats': 'pbf_ros/SimulationStats',
@@ -84,13 +86,61 @@ class NodeInterfaceTest(unittest.TestCase):
     def test_06_diagnostics_report_the_node(self):
         diagnostics = Latest('/diagnostics', DiagnosticArray)
         m = diagnostics.next(timeout=15.0, condition=lambda m: any(
-            'fluid' in s.name for s in m.status))
-        status = [s for s in m.status if 'fluid' in s.name][0]
+            s.name == SIMULATION for s in m.status))
+        status = [s for s in m.status if s.name == SIMULATION][0]
         keys = {kv.key for kv in status.values}
         self.assertIn('achieved real-time factor', keys)
         self.assertIn('average density error', keys)
         self.assertIn('NaN recoveries since reset', keys)
         diagnostics.close()
+
+    def test_07_diagnostics_carry_the_cloud_rate_while_subscribed(self):
+        name = SIMULATION.split(':')[0] + ': topic ' + NODE + '/particles'
+        diagnostics = Latest('/diagnostics', DiagnosticArray)
+
+        def cloud_status(condition):
+            m = diagnostics.next(timeout=20.0, condition=lambda m: any(
+                s.name == name and condition(s) for s in m.status))
+            return [s for s in m.status if s.name == name][0]
+        try:
+            # Nobody listens (the earlier tests' subscribers are gone): idle, and OK.
+            status = cloud_status(lambda s: s.message.startswith('idle'))
+            self.assertEqual(status.level, DiagnosticStatus.OK)
+            self.assertIn('no subscriber', status.message)
+            clouds = cloud_listener()
+            try:
+                # Subscribed: FrequencyStatus measures the rate against ~publish_rate.
+                status = cloud_status(lambda s: any(
+                    kv.key == 'Actual frequency (Hz)' for kv in s.values))
+                values = {kv.key: float(kv.value) for kv in status.values}
+                self.assertAlmostEqual(values['Maximum acceptable frequency (Hz)'],
+                                       PUBLISH_RATE * 1.1, places=3)
+                self.assertAlmostEqual(values['Minimum acceptable frequency (Hz)'],
+                                       PUBLISH_RATE * 0.5 * 0.9, places=3)
+                self.assertGreater(values['Events in window'], 0)
+                self.assertGreater(values['Actual frequency (Hz)'], 0.3 * PUBLISH_RATE)
+                self.assertLess(values['Actual frequency (Hz)'], 1.2 * PUBLISH_RATE)
+                self.assertGreater(clouds.count, 0)
+            finally:
+                clouds.close()
+        finally:
+            diagnostics.close()
+
+    def test_08_diagnostics_come_at_the_updater_period(self):
+        diagnostics = Latest('/diagnostics', DiagnosticArray)
+        try:
+            ours = lambda m: any(s.name == SIMULATION for s in m.status)
+            first = diagnostics.next(timeout=10.0, condition=ours)
+            start = time.time()
+            for _ in range(4):
+                diagnostics.next(timeout=10.0, condition=ours)
+            period = (time.time() - start) / 4
+            # node_interface.test sets ~diagnostic_period 0.5 (the default is 1 s).
+            self.assertGreater(period, 0.35)
+            self.assertLess(period, 0.75)
+            self.assertIsNotNone(first)
+        finally:
+            diagnostics.close()
 
 
 if __name__ == '__main__':

@@ -26,7 +26,9 @@ class SimClockTest(unittest.TestCase):
             m = stats.next(timeout=10.0)
             self.assertLess(abs((m.header.stamp - clock.msg.clock).to_sec()), 1.0)
             self.assertTrue(pause(True).success)
-            frozen = clock.next(timeout=10.0).clock
+            # /clock messages sent before the pause took effect may still arrive: the frozen
+            # time is the one two consecutive messages agree on.
+            frozen = clock.settled(key=lambda m: m.clock, timeout=10.0).clock
             time.sleep(0.5)
             self.assertEqual(clock.next(timeout=10.0).clock, frozen)
             self.assertTrue(pause(False).success)

@@ -9,13 +9,13 @@ import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from sensor_msgs.msg import Image
 
-from fluid_test_util import NODE, Latest, stats_listener
+from fluid_test_util import NODE, SIMULATION, Latest, stats_listener
 
 
 class SurfaceWithoutGlTest(unittest.TestCase):
 
     def test_simulation_runs_on_and_diagnostics_say_why_there_is_no_surface(self):
-        image = Latest(NODE + '/surface/image_raw', Image)
+        image = Latest(NODE + '/rgb/image_rect_color', Image)
         stats = stats_listener()
         diagnostics = Latest('/diagnostics', DiagnosticArray)
         try:
@@ -27,8 +27,8 @@ class SurfaceWithoutGlTest(unittest.TestCase):
             self.assertEqual(last.surface_frames, 0)
             self.assertEqual(image.count, 0)
             m = diagnostics.next(timeout=15.0, condition=lambda m: any(
-                'fluid' in s.name for s in m.status))
-            status = [s for s in m.status if 'fluid' in s.name][0]
+                s.name == SIMULATION for s in m.status))
+            status = [s for s in m.status if s.name == SIMULATION][0]
             values = {kv.key: kv.value for kv in status.values}
             self.assertTrue(values['surface rendering'].startswith('unavailable'), values)
             self.assertGreaterEqual(status.level, DiagnosticStatus.WARN)

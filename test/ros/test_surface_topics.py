@@ -19,14 +19,16 @@ from sensor_msgs.msg import CameraInfo, Image
 from std_srvs.srv import SetBool
 from tf2_msgs.msg import TFMessage
 
-from fluid_test_util import NODE, Latest, stats_listener
+from fluid_test_util import NODE, SIMULATION, Latest, stats_listener
 
 WIDTH, HEIGHT = 160, 120
 FRAME = 'fluid_camera_optical'
+# An RGB-D camera's layout, as depth_image_proc's point_cloud_xyzrgb takes it.
 TOPICS = {
-    'image': (NODE + '/surface/image_raw', Image),
-    'info': (NODE + '/surface/camera_info', CameraInfo),
-    'depth': (NODE + '/surface/depth/image_raw', Image),
+    'image': (NODE + '/rgb/image_rect_color', Image),
+    'info': (NODE + '/rgb/camera_info', CameraInfo),
+    'depth': (NODE + '/depth_registered/image_rect', Image),
+    'depth_info': (NODE + '/depth_registered/camera_info', CameraInfo),
 }
 
 
@@ -46,7 +48,7 @@ class ByStamp:
             self._cond.notify_all()
 
     def complete_set(self, timeout, condition=lambda group: True):
-        """Waits for a stamp that all three topics carried (and satisfies condition)."""
+        """Waits for a stamp that all topics carried (and satisfies condition)."""
         deadline = time.time() + timeout
         with self._cond:
             while True:
@@ -56,7 +58,7 @@ class ByStamp:
                         return stamp, group
                 remaining = deadline - time.time()
                 if remaining <= 0:
-                    raise AssertionError('no image + depth + camera_info with one stamp within '
+                    raise AssertionError('no image + depth + camera_infos with one stamp within '
                                          '%.1f s (stamps: %s)' % (
                                              timeout, {s.to_sec(): sorted(g) for s, g in
                                                        self.messages.items()}))
@@ -86,7 +88,7 @@ class SurfaceTopicsTest(unittest.TestCase):
     def test_01_no_subscriber_means_no_render_work(self):
         stats = stats_listener()
         try:
-            # Let the node start, then watch for a while: nobody subscribes to ~surface.
+            # Let the node start, then watch for a while: nobody subscribes to the images.
             stats.next(timeout=30.0)
             first = stats.next(timeout=10.0)
             time.sleep(2.0)
@@ -105,13 +107,14 @@ class SurfaceTopicsTest(unittest.TestCase):
         try:
             stamp, group = surface.complete_set(timeout=25.0)
             image, info, depth = group['image'], group['info'], group['depth']
+            # One camera: the depth image's camera_info is the colour image's.
+            self.assertEqual(group['depth_info'], info)
             for m in (image, info, depth):
                 self.assertEqual(m.header.frame_id, FRAME)
                 self.assertEqual(m.header.stamp, stamp)
-            self.assertIn(image.encoding, ('rgba8', 'rgb8'))
+            self.assertEqual(image.encoding, 'rgb8')
             self.assertEqual((image.width, image.height), (WIDTH, HEIGHT))
-            channels = 4 if image.encoding == 'rgba8' else 3
-            self.assertEqual(image.step, WIDTH * channels)
+            self.assertEqual(image.step, WIDTH * 3)
             self.assertEqual(len(image.data), HEIGHT * image.step)
 
             self.assertEqual(depth.encoding, '32FC1')
@@ -198,6 +201,9 @@ class SurfaceTopicsTest(unittest.TestCase):
         try:
             surface.complete_set(timeout=20.0)
             self.assertTrue(pause(True).success)
+            # Paused once the step counter stands still; a frame of the last state before the
+            # pause may still be on its way for a moment.
+            stats.settled(key=lambda m: m.step_count, timeout=10.0)
             time.sleep(1.0)
             frames = stats.next(timeout=10.0).surface_frames
             time.sleep(1.5)
@@ -205,7 +211,7 @@ class SurfaceTopicsTest(unittest.TestCase):
                              'a paused fluid is rendered once, not again and again')
             # Someone who subscribes now still gets the (paused) surface. Another process:
             # rospy would share this process's connection and never connect anew.
-            out = subprocess.run(['rostopic', 'echo', '-n', '1', NODE + '/surface/image_raw/header'],
+            out = subprocess.run(['rostopic', 'echo', '-n', '1', NODE + '/rgb/image_rect_color/header'],
                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=20.0,
                                  check=False, universal_newlines=True)
             self.assertEqual(out.returncode, 0, out.stdout)
@@ -283,8 +289,8 @@ class SurfaceTopicsTest(unittest.TestCase):
         diagnostics = Latest('/diagnostics', DiagnosticArray)
         try:
             m = diagnostics.next(timeout=15.0, condition=lambda m: any(
-                'fluid' in s.name for s in m.status))
-            status = [s for s in m.status if 'fluid' in s.name][0]
+                s.name == SIMULATION for s in m.status))
+            status = [s for s in m.status if s.name == SIMULATION][0]
             values = {kv.key: kv.value for kv in status.values}
             self.assertIn('surface frames rendered', values)
             self.assertGreater(int(values['surface frames rendered']), 0)

@@ -128,6 +128,7 @@ class PbfSolver {
   std::vector<Eigen::Vector3f> delta_;       // delta p
   std::vector<Eigen::Vector3f> new_velocity_;
   std::vector<Eigen::Vector3f> vorticity_;
+  std::vector<float> vorticity_norm_;        // |omega| per particle (confinement)
   std::vector<Eigen::Vector3f> build_position_;  // positions at the last list build (skin)
   std::vector<float> lambda_;
   std::vector<float> scorr_scale_;          // per particle bound of the s_corr push

@@ -6,10 +6,14 @@
 //    requested real-time factor, publishes what is due and runs queued changes between steps;
 //  - ROS callbacks (reconfigure, services, diagnostics) run on an AsyncSpinner. They never
 //    touch the solver: they post tasks to the simulation thread and wait for the answer;
-//  - the surface render thread (SurfaceRenderThread, started by main) takes particle
-//    snapshots from snapshots() (never blocks), reports into surfaceStatus() (shown in
-//    ~stats), gets its parameters through setRenderSettingsListener() and sends its camera
-//    pose through sendStaticTransform().
+//  - the surface render thread (SurfaceRenderThread, started beside it by FluidDriver)
+//    takes particle snapshots from snapshots() (never blocks), reports into surfaceStatus()
+//    (shown in ~stats) and imageRate()/depthRate() (/diagnostics), gets its parameters
+//    through setRenderSettingsListener() and sends its camera pose through
+//    sendStaticTransform().
+//
+// Messages go out as shared_ptr<const>: subscribers in the same process (nodelets in one
+// manager) receive the published object itself, no copy and no serialisation.
 
 #include <atomic>
 #include <cstdint>
@@ -44,6 +48,7 @@
 #include "pbf_ros/ros/SolidWrenchPublishers.h"
 #include "pbf_ros/ros/SurfaceRenderStatus.h"
 #include "pbf_ros/ros/TfAttachments.h"
+#include "pbf_ros/ros/TopicRateDiagnostic.h"
 
 namespace pbf_ros {
 
@@ -77,6 +82,10 @@ class FluidNode {
   // watchMaster(). pbf_node shuts down and exits non-zero.
   void setMasterLostHandler(std::function<void()> handler) { on_master_lost_ = std::move(handler); }
   bool masterLost() const { return master_lost_; }
+
+  // Rates of the surface topics on /diagnostics; the render thread ticks them per message.
+  TopicRateDiagnostic& imageRate() { return image_rate_; }
+  TopicRateDiagnostic& depthRate() { return depth_rate_; }
 
  private:
   using ReconfigureServer = dynamic_reconfigure::Server<FluidConfig>;
@@ -122,8 +131,11 @@ class FluidNode {
   ros::Time stamp() const;
   double wallNow() const;
 
-  // --- diagnostics (spinner thread) ---
+  // --- diagnostics (spinner thread; FluidNodeDiagnostics.cpp) ---
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void startDiagnostics();
+  void publishDiagnostics();  // wall timer, every ~diagnostic_period
+  std::string surfaceIdle(int subscribers) const;
 
   ros::NodeHandle nh_, pnh_;
 
@@ -145,6 +157,7 @@ class FluidNode {
   tf2_ros::StaticTransformBroadcaster tf_static_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_, master_timer_;
+  double last_diagnostic_period_ = 0.0;  // the diagnostics timer's period [s]
   bool master_down_ = false;
   std::atomic<bool> master_lost_{false};
   std::function<void()> on_master_lost_;
@@ -167,7 +180,7 @@ class FluidNode {
   std::vector<RobotLinkSolids> robot_links_;  // which of scene_.obstacles are whose
   bool robot_built_once_ = false;      // later builds wait less for the links' tf
   RealTimePacer pacer_;
-  bool paused_ = false;
+  std::atomic<bool> paused_{false};    // written by the simulation thread only
   bool stepped_since_resume_ = false;
   double sim_clock_ = 0.0;             // monotonic over resets: what /clock shows [s]
   pbf::StepStats last_stats_;
@@ -181,7 +194,8 @@ class FluidNode {
   std::atomic<bool> cloud_wanted_{false};  // a new subscriber wants the current state
   double cloud_ms_ = 0.0;
   bool cloud_skipped_ = true;
-  sensor_msgs::PointCloud2 cloud_;     // reused: its buffer is not reallocated every time
+  // Published as shared_ptr<const>; reused (no reallocation) once no subscriber holds it.
+  boost::shared_ptr<sensor_msgs::PointCloud2> cloud_;
   SimulationTasks tasks_;
   SnapshotBuffer snapshots_;
   SurfaceRenderStatus surface_status_;
@@ -192,6 +206,9 @@ class FluidNode {
   double last_floating_tf_wall_ = 0.0;
   std::atomic<bool> running_{false};
   std::thread sim_thread_;
+
+  // Rates on /diagnostics: ticked by the publishers, run by the diagnostics timer.
+  TopicRateDiagnostic cloud_rate_, stats_rate_, image_rate_, depth_rate_;
 
   // Shared with the diagnostics callback.
   std::mutex health_mutex_;

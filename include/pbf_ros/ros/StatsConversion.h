@@ -24,9 +24,9 @@ struct StatsContext {
   std::uint32_t nan_recoveries = 0; // since the last reset
   double cloud_ms = 0.0;            // last ~particles fill
   bool cloud_skipped = false;       // last ~particles opportunity had no subscriber
-  bool render_skipped = false;      // no ~surface subscriber (or no GL): nothing rendered
-  double render_ms = 0.0;           // last ~surface frame
-  std::uint64_t render_frames = 0;  // ~surface frames since the node started
+  bool render_skipped = false;      // no image subscriber (or no GL): nothing rendered
+  double render_ms = 0.0;           // last surface frame
+  std::uint64_t render_frames = 0;  // surface frames since the node started
   bool wrench_tracked = false;      // solids_wrench was measured (someone wants wrenches)
   pbf::Wrench solids_wrench;        // fluid on all solids, fluid_domain, about its origin
 };

@@ -1,5 +1,6 @@
 #pragma once
-// pbf::RenderOutput -> sensor_msgs/Image: the shaded surface (rgba8) and its depth (32FC1,
+// pbf::RenderOutput -> sensor_msgs/Image: the shaded surface (rgb8; the renderer's opaque
+// RGBA without its alpha) and its depth (32FC1,
 // metres along the optical axis, NaN where there is no fluid: REP 118). Rows top-down, as
 // the renderer gives them. Plain functions, unit-tested without a master.
 

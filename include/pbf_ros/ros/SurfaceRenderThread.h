@@ -1,10 +1,13 @@
 #pragma once
 // The surface render thread of pbf_node (ARCHITECTURE.md section 4): it owns the GL context
 // (created, used and destroyed on this thread only), takes the latest particle snapshot from
-// the SnapshotBuffer (never blocking the solver) and publishes
-//   ~surface/image_raw + ~surface/camera_info        (image_transport CameraPublisher, rgba8)
-//   ~surface/depth/image_raw + ~surface/depth/camera_info   (32FC1 metres, NaN = no fluid)
-// with one shared header (the snapshot's stamp, frame fluid_camera_optical).
+// the node's SnapshotBuffer (never blocking the solver) and publishes, laid out as an RGB-D
+// camera for depth_image_proc (its point_cloud_xyzrgb takes these names as they are):
+//   ~rgb/image_rect_color + ~rgb/camera_info                 (rgb8)
+//   ~depth_registered/image_rect + ~depth_registered/camera_info  (32FC1 metres, NaN = none)
+// with one shared header (the snapshot's stamp, frame fluid_camera_optical). "rect" and
+// "registered" hold by construction: one ideal pinhole camera renders both, no distortion.
+// Messages go out as shared_ptr<const> (zero copies to subscribers in the same process).
 //
 // Work only while someone listens: without a subscriber to either camera publisher the
 // thread asks for no snapshots (the simulation copies nothing) and renders nothing. At most
@@ -32,6 +35,7 @@
 #include "pbf_ros/ros/RenderCameraParams.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
 #include "pbf_ros/ros/SurfaceRenderStatus.h"
+#include "pbf_ros/ros/TopicRateDiagnostic.h"
 
 namespace pbf {
 class FluidRenderer;
@@ -52,16 +56,15 @@ struct SurfaceStartup {
 };
 SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh);
 
+class FluidNode;
+
 class SurfaceRenderThread {
  public:
-  // Sends the camera pose as a static transform (the node's broadcaster: one latched
-  // /tf_static publisher per node).
-  using PoseSink = std::function<void(const geometry_msgs::TransformStamped&)>;
-
-  // Advertises the topics and starts the thread, which creates the GL context.
-  SurfaceRenderThread(ros::NodeHandle private_nh, const SurfaceStartup& startup,
-                      SnapshotBuffer& snapshots, SurfaceRenderStatus& status,
-                      PoseSink send_pose);
+  // Advertises the topics and starts the thread, which creates the GL context. Takes its
+  // snapshots from `node`, reports into its surfaceStatus() and imageRate()/depthRate(),
+  // and sends the camera pose through its one latched /tf_static publisher. `node` must
+  // outlive this object.
+  SurfaceRenderThread(ros::NodeHandle private_nh, const SurfaceStartup& startup, FluidNode& node);
   ~SurfaceRenderThread();  // stops the thread; the GL context dies with it
   SurfaceRenderThread(const SurfaceRenderThread&) = delete;
   SurfaceRenderThread& operator=(const SurfaceRenderThread&) = delete;
@@ -77,9 +80,9 @@ class SurfaceRenderThread {
                         const SurfaceSettings& settings, bool image, bool depth);
 
   SurfaceStartup startup_;
+  FluidNode& node_;
   SnapshotBuffer& snapshots_;
   SurfaceRenderStatus& status_;
-  PoseSink send_pose_;
   image_transport::ImageTransport transport_;
   image_transport::CameraPublisher image_pub_, depth_pub_;
 

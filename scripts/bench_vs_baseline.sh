@@ -1,0 +1,84 @@
+#!/bin/bash
+# Speed against a fixed baseline, measured side by side on this machine (issue 10): builds
+# the baseline commit's pbf_step_benchmark in a second folder, this tree's in ./build as
+# configured (the shipped default: portable, no -march=native) and, with --native, a third
+# build of this tree with -march=native; then runs them alternately, several rounds, so
+# that load on a shared machine hits every build alike.
+#
+#   scripts/bench_vs_baseline.sh [--rounds N] [--native] [--filter REGEX] [--baseline REV]
+#
+#   --rounds N      alternations (default 3); each run is a Google Benchmark with 3 repetitions
+#   --native        also build and time this tree with PBF_NATIVE=ON
+#   --filter REGEX  benchmark filter (default: the 20k dam-break step, 1 and 2 threads)
+#   --baseline REV  baseline commit (default e7d8d7f, the last main before issue 10)
+#
+# Baseline recipe: `git worktree add --detach build/baseline/src REV`, then a plain Release
+# configure of that tree into build/baseline/build and `make pbf_step_benchmark`. The
+# baseline's own CMake defaults apply (it built with -march=native).
+# Output: build/bench_vs_baseline/<build>_<round>.json and a median table on stdout.
+set -euo pipefail
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ROUNDS=3
+NATIVE=0
+FILTER='BM_DamBreakStep/kparticles:20/threads:[12]/boundary:1'
+BASELINE=e7d8d7f
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --rounds) ROUNDS="$2"; shift ;;
+    --native) NATIVE=1 ;;
+    --filter) FILTER="$2"; shift ;;
+    --baseline) BASELINE="$2"; shift ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    *) echo "bench_vs_baseline.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+
+BASE_DIR="$ROOT/build/baseline"
+OUT="$ROOT/build/bench_vs_baseline"
+mkdir -p "$BASE_DIR" "$OUT"
+
+# --- builds ---------------------------------------------------------------------------
+"$ROOT/scripts/build.sh" pbf_step_benchmark > "$OUT/build_current.log" 2>&1 || {
+  tail -30 "$OUT/build_current.log"; exit 1; }
+declare -A BIN
+BIN[current]="$ROOT/build/devel/lib/pbf_ros/pbf_step_benchmark"
+
+if [ ! -d "$BASE_DIR/src" ]; then
+  git -C "$ROOT" worktree add --detach "$BASE_DIR/src" "$BASELINE" > /dev/null
+fi
+git -C "$BASE_DIR/src" checkout --quiet --detach "$BASELINE"
+mkdir -p "$BASE_DIR/build/devel/lib/python3/dist-packages"
+cmake -S "$BASE_DIR/src" -B "$BASE_DIR/build" -DCMAKE_BUILD_TYPE=Release > "$OUT/build_baseline.log" 2>&1
+make -C "$BASE_DIR/build" -j"$(nproc)" pbf_step_benchmark >> "$OUT/build_baseline.log" 2>&1 || {
+  tail -30 "$OUT/build_baseline.log"; exit 1; }
+BIN[baseline]="$BASE_DIR/build/devel/lib/pbf_ros/pbf_step_benchmark"
+
+if [ "$NATIVE" = 1 ]; then
+  N="$ROOT/build/native"
+  mkdir -p "$N/devel/lib/python3/dist-packages"
+  cmake -S "$ROOT" -B "$N" -DCMAKE_BUILD_TYPE=Release -DPBF_NATIVE=ON > "$OUT/build_native.log" 2>&1
+  make -C "$N" -j"$(nproc)" pbf_step_benchmark >> "$OUT/build_native.log" 2>&1 || {
+    tail -30 "$OUT/build_native.log"; exit 1; }
+  BIN[native]="$N/devel/lib/pbf_ros/pbf_step_benchmark"
+fi
+
+BUILDS="baseline current"
+[ "$NATIVE" = 1 ] && BUILDS="$BUILDS native"
+rm -f "$OUT"/*.json
+
+# --- alternating runs -----------------------------------------------------------------
+# Sleep-waiting OpenMP threads, as the node's launch file uses.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
+echo "[bench] load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+for round in $(seq 1 "$ROUNDS"); do
+  for build in $BUILDS; do
+    "${BIN[$build]}" --benchmark_filter="$FILTER" --benchmark_repetitions=3 \
+      --benchmark_report_aggregates_only=true --benchmark_format=json \
+      > "$OUT/${build}_${round}.json" 2> /dev/null
+    echo "[bench] round $round: $build done"
+  done
+done
+echo "[bench] load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+/usr/bin/python3 "$ROOT/scripts/bench_table.py" "$OUT" $BUILDS

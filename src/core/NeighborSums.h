@@ -1,0 +1,60 @@
+#pragma once
+// The neighbour sums of the solver's hot passes, over raw float arrays (positions and
+// velocities as packed x,y,z triples, CSR neighbour lists). Each is built twice, for
+// x86-64-v3 (AVX2 + FMA) and for plain x86-64, and the loader picks the one the CPU runs
+// (GCC target_clones): a portable binary still uses the wide registers where they exist.
+// Private to pbf_core; the passes in ConstraintPasses.cpp / VelocityPasses.cpp call them
+// once per particle and do the rare and per-particle work (coincident pairs, walls).
+
+#include <cstddef>
+#include <cstdint>
+
+namespace pbf {
+
+// CSR neighbour lists and the packed positions they index.
+struct NeighborArrays {
+  const float* position;       // x,y,z per particle
+  const std::uint32_t* offset;  // n + 1 entries
+  const std::uint32_t* index;
+};
+
+// Kernel constants of one pass, premultiplied by the mass / volume factors it needs.
+struct PairConstants {
+  float h, h2;
+  float poly6;       // m * Poly6 coefficient: m W(r) = poly6 * (h^2 - r^2)^3
+  float spiky;       // (m / rho0) * Spiky gradient coefficient
+  float coincident2; // pairs with r^2 at or below this have no direction
+};
+
+// Density, constraint gradient sum and sum of squared gradients of particle i (the lambda
+// pass, eq 8-9). Writes each pair's gradient factor g (grad = g * r) to pair_gradient for
+// the delta-p pass. `coincident` counts pairs without a direction (left out of the sums).
+struct LambdaSums {
+  float rho, gx, gy, gz, sum_grad2;
+  int coincident;
+};
+LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                      float* pair_gradient);
+
+// sum_j (lambda_i + lambda_j) g_ij r_ij: particle i's position correction (eq 12, no
+// s_corr), from the lambda pass's pair factors. `coincident` as above.
+struct VectorSum {
+  float x, y, z;
+  int coincident;
+};
+VectorSum deltaSums(const NeighborArrays& a, float coincident2, std::size_t i, const float* lambda,
+                    const float* pair_gradient);
+
+// Density (m W summed over neighbours within h, self excluded) and that neighbour count.
+struct DensitySum {
+  float rho;
+  std::uint32_t count;
+};
+DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i);
+
+// XSPH sum_j (m / rho_j) W_ij (v_j - v_i) of particle i (eq 10); `velocity` packed like
+// positions. k.poly6 must be the bare mass times the Poly6 coefficient.
+VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                   const float* velocity, const float* density);
+
+}  // namespace pbf
