@@ -24,6 +24,10 @@ add_library(pbf_core
   src/core/NeighborSumsDispatch.cpp
   $<TARGET_OBJECTS:pbf_neighbor_sums_base>
   $<TARGET_OBJECTS:pbf_neighbor_sums_v3>
+  src/core/WrenchTracking.cpp
+  src/core/SolidWrench.cpp
+  src/core/RigidBody.cpp
+  src/core/FloatingBodies.cpp
   src/core/SolverParams.cpp
   src/core/Scene.cpp
   src/core/Metrics.cpp

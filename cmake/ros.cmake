@@ -13,16 +13,20 @@ add_library(pbf_ros_node
   src/ros/FluidNode.cpp
   src/ros/FluidNodeDiagnostics.cpp
   src/ros/FluidNodeReconfigure.cpp
+  src/ros/FluidNodeRobot.cpp
   src/ros/FluidNodeServices.cpp
   src/ros/ParamsConversion.cpp
   src/ros/RealTimePacer.cpp
   src/ros/ReconfigureRecord.cpp
   src/ros/RenderCameraParams.cpp
+  src/ros/RobotSource.cpp
   src/ros/SceneMarkers.cpp
   src/ros/SceneLoading.cpp
   src/ros/SimulationLoop.cpp
   src/ros/SimulationTasks.cpp
   src/ros/SnapshotBuffer.cpp
+  src/ros/SolidWrenchPublishers.cpp
+  src/ros/SolidWrenchTargets.cpp
   src/ros/StatsConversion.cpp
   src/ros/SurfaceImageConversion.cpp
   src/ros/SurfaceRenderThread.cpp
@@ -30,7 +34,7 @@ add_library(pbf_ros_node
   src/ros/TopicRateDiagnostic.cpp)
 target_include_directories(pbf_ros_node PUBLIC include ${CATKIN_DEVEL_PREFIX}/include)
 # pbf_render brings its GL back-ends (OSMesa, EGL) but never libGL/libOpenGL.
-target_link_libraries(pbf_ros_node PUBLIC pbf_core pbf_render ${catkin_LIBRARIES})
+target_link_libraries(pbf_ros_node PUBLIC pbf_core pbf_render pbf_robots ${catkin_LIBRARIES})
 # The generated SimulationStats.h and FluidConfig.h must exist before we compile.
 add_dependencies(pbf_ros_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 

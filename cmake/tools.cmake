@@ -14,3 +14,7 @@ else()
   message(STATUS "pbf_ros: Google Benchmark not found (Debian: libbenchmark-dev); "
                  "pbf_step_benchmark is not built")
 endif()
+
+# The fluid's force on a held solid against Archimedes at a chosen resolution (README).
+add_executable(pbf_hydrostatic_forces src/tools/hydrostatic_forces.cpp)
+target_link_libraries(pbf_hydrostatic_forces pbf_core)

@@ -26,6 +26,8 @@ PACKAGES=(
   image-transport-tools python3-nodelet ros-tf2-msgs
   # robots as solids: URDF, and meshes through geometric_shapes (assimp); check_urdf
   liburdf-dev libgeometric-shapes-dev liburdfdom-tools
+  # tf for a robot description (robot_solids rostest, robot demos)
+  ros-robot-state-publisher
   # headless rendering
   libosmesa6-dev libegl-dev libgl-dev libgles-dev libpng-dev
   # plots, and looking at the demo like a user

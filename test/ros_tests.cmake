@@ -13,7 +13,8 @@ catkin_add_gtest(test_ros_units
   test/ros/test_render_camera_params.cpp
   test/ros/test_scene_markers.cpp
   test/ros/test_snapshot_buffer.cpp
-  test/ros/test_stats_and_health.cpp)
+  test/ros/test_stats_and_health.cpp
+  test/ros/test_wrench_targets.cpp)
 if(TARGET test_ros_units)
   # catkin links gtest but not its main().
   target_link_libraries(test_ros_units pbf_ros_node gtest_main)
@@ -30,6 +31,8 @@ add_rostest(test/surface_no_gl.test DEPENDENCIES pbf_node)
 add_rostest(test/node_lifecycle.test DEPENDENCIES pbf_node)
 add_rostest(test/hostile_input.test DEPENDENCIES pbf_node)
 add_rostest(test/reset_moved_frame.test DEPENDENCIES pbf_node)
+add_rostest(test/robot_solids.test DEPENDENCIES pbf_node)
+add_rostest(test/floating_bodies.test DEPENDENCIES pbf_node)
 # The nodelet in a manager beside depth_image_proc's point_cloud_xyzrgb.
 add_rostest(test/fluid_nodelet.test DEPENDENCIES pbf_fluid_nodelet)
 

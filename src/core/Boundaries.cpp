@@ -163,25 +163,8 @@ bool SolidBoundaries::curvedDensity(const Obstacle& o, const Eigen::Vector3f& p,
   return true;
 }
 
-Eigen::Vector3f SolidBoundaries::project(const Eigen::Vector3f& p_in) const {
-  Eigen::Vector3f p = p_in;
-  for (const Obstacle& o : *obstacles_) {
-    if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + radius_, 2.0f)) continue;
-    Eigen::Vector3f n;
-    const float s = o.signedDistance(p, n);
-    if (s < radius_) p += (radius_ - s) * n;
-  }
-  if (has_container_) {
-    const Eigen::Vector3f lo = box_.min() + Eigen::Vector3f::Constant(radius_);
-    const Eigen::Vector3f hi = box_.max() - Eigen::Vector3f::Constant(radius_);
-    if (!posed_) return p.cwiseMax(lo).cwiseMin(hi);
-    return pose_ * (inverse_ * p).cwiseMax(lo).cwiseMin(hi);
-  }
-  return p;
-}
-
 bool SolidBoundaries::contact(const Eigen::Vector3f& p, float reach, Eigen::Vector3f& normal,
-                              Eigen::Vector3f& surface_motion) const {
+                              Eigen::Vector3f& surface_motion, int* solid) const {
   for (std::size_t k = 0; k < obstacles_->size(); ++k) {
     const Obstacle& o = (*obstacles_)[k];
     if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + reach, 2.0f)) continue;
@@ -189,6 +172,7 @@ bool SolidBoundaries::contact(const Eigen::Vector3f& p, float reach, Eigen::Vect
     surface_motion = Eigen::Vector3f::Zero();
     if (prev_obstacles_ && k < prev_obstacles_->size())  // where this surface point was
       surface_motion = p - (*prev_obstacles_)[k] * (o.pose.inverse(Eigen::Isometry) * p);
+    if (solid) *solid = kContainerFaces + static_cast<int>(k);
     return true;
   }
   if (!has_container_) return false;
@@ -198,6 +182,7 @@ bool SolidBoundaries::contact(const Eigen::Vector3f& p, float reach, Eigen::Vect
     if (q[a] - box_.min()[a] <= reach) n_local[a] = 1.0f;
     else if (box_.max()[a] - q[a] <= reach) n_local[a] = -1.0f;
     else continue;
+    if (solid) *solid = 2 * a + (n_local[a] > 0.0f ? 0 : 1);
     normal = posed_ ? Eigen::Vector3f(pose_.linear() * n_local) : n_local;
     surface_motion = p - prev_container_ * q;
     return true;

@@ -233,6 +233,7 @@ void PbfSolver::computeDeltas() {
     delta_[i] = dp;
     if (walls) delta_[i] += li * wall_gradient_[i];  // lambda_i times the solids' part of grad_i C_i
   }
+  if (track_wrenches_ && walls) recordBoundaryDensityPush(boundaries());
 }
 
 SolidBoundaries PbfSolver::boundaries() const {
@@ -247,6 +248,7 @@ SolidBoundaries PbfSolver::boundaries() const {
 void PbfSolver::applyDeltasAndBoundary() {
   const std::size_t n = size();
   const SolidBoundaries solids = boundaries();
+  if (track_wrenches_) return applyDeltasRecordingBoundary(solids);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) predicted_[i] = solids.project(predicted_[i] + delta_[i]);
 }

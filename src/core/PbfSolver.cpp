@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/LatticeBoundary.h"
 #include "pbf_ros/core/NeighborGrid.h"
 
@@ -145,11 +146,15 @@ StepStats PbfSolver::stepWith(float dt) {
     ++stats.nan_retries;
     dt *= 0.5f;
   }
+  wrenches_ = SolidWrenches();
   if (!ok) {
     stats.failed = true;
     stats.dt = 0.0;
     gatherStats(stats);
   } else {
+    if (track_wrenches_)
+      wrenches_ = wrench_sums_.result(params_.particleMass(), stats.dt,
+                                      container_pose_.translation().cast<double>(), obstacles_);
     time_ += stats.dt;
     ++step_count_;
     // The boundaries have now reached the poses set for this step.
@@ -182,6 +187,8 @@ std::vector<StepStats> PbfSolver::advance(double duration) {
 bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   stats.dt = dt;
   current_dt_ = dt;
+  if (track_wrenches_)
+    wrench_sums_.reset(SolidBoundaries::kContainerFaces + obstacles_.size(), omp_get_max_threads());
   auto t = Clock::now();
   const bool predicted_finite = predict(dt);
   stats.times.other_ms += msSince(t);

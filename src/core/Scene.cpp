@@ -9,6 +9,8 @@
 #include <map>
 #include <sstream>
 
+#include "pbf_ros/core/RigidBody.h"
+
 namespace pbf {
 
 namespace {
@@ -207,7 +209,7 @@ Eigen::Isometry3f readPose(const YAML::Node& n, const std::string& origin, const
 
 Obstacle readObstacle(const YAML::Node& n, const std::string& origin, const std::string& key) {
   if (!n.IsMap()) fail(origin, key, "a map with 'box', 'sphere', 'capsule' or 'cylinder'");
-  checkKeys(n, {"box", "sphere", "capsule", "cylinder", "frame"}, origin, key + ".");
+  checkKeys(n, {"box", "sphere", "capsule", "cylinder", "frame", "dynamic"}, origin, key + ".");
   Obstacle o;
   int shapes = 0;
   if (const YAML::Node b = n["box"]) {
@@ -252,6 +254,34 @@ Obstacle readObstacle(const YAML::Node& n, const std::string& origin, const std:
   const std::string err = o.validate();
   if (!err.empty()) fail(origin, key, "usable sizes (" + err + ")");
   return o;
+}
+
+// `dynamic: {density: kg/m^3}` or `dynamic: {mass: kg}`, optionally `inertia: [ixx, iyy, izz]`
+// (about its centre, in its axes; default: a uniform solid). The body starts at the shape's
+// centre/rpy; `frame` names the tf frame the node publishes it on (default floating_<k>).
+FloatingBodySpec readFloating(const YAML::Node& n, const std::string& origin, const std::string& key,
+                              std::size_t index, Obstacle& o) {
+  if (!n.IsMap()) fail(origin, key, "a map with 'density' or 'mass' (and optionally 'inertia')");
+  checkKeys(n, {"density", "mass", "inertia"}, origin, key + ".");
+  if (!n["density"] == !n["mass"]) fail(origin, key, "exactly one of 'density' [kg/m^3] or 'mass' [kg]");
+  if (o.shape == Obstacle::Shape::Mesh) fail(origin, key, "a primitive shape (meshes cannot float yet)");
+  FloatingBodySpec f;
+  f.obstacle = index;
+  const double volume = solidVolume(o);
+  f.mass = n["mass"] ? readFloat(n["mass"], origin, key + ".mass")
+                     : readFloat(n["density"], origin, key + ".density") * volume;
+  if (!(f.mass > 0.0 && std::isfinite(f.mass))) fail(origin, key, "a positive mass or density");
+  if (const YAML::Node i = n["inertia"]) {
+    const Eigen::Vector3f diagonal = readVec3(i, origin, key + ".inertia");
+    if (!(diagonal.array() > 0.0f).all()) fail(origin, key + ".inertia", "three positive moments [kg m^2]");
+    f.inertia = diagonal.cast<double>().asDiagonal();
+  } else {
+    f.inertia = solidInertia(o, f.mass);
+  }
+  if (o.frame.empty()) o.frame = "floating_" + std::to_string(index);
+  o.pose = o.offset;  // where it starts, in fluid_domain; the node publishes frame -> it
+  o.offset = Eigen::Isometry3f::Identity();
+  return f;
 }
 
 bool blockContains(const FluidBlock& b, const Eigen::Vector3f& p) {
@@ -329,8 +359,12 @@ Scene parseScene(const std::string& text, const std::string& origin) {
     if (obstacles.size() > kMaxObstacles)
       fail(origin, "obstacles", "at most " + std::to_string(kMaxObstacles) + " obstacles (got " +
                                     std::to_string(obstacles.size()) + ")");
-    for (std::size_t i = 0; i < obstacles.size(); ++i)
-      s.obstacles.push_back(readObstacle(obstacles[i], origin, "obstacles[" + std::to_string(i) + "]"));
+    for (std::size_t i = 0; i < obstacles.size(); ++i) {
+      const std::string key = "obstacles[" + std::to_string(i) + "]";
+      s.obstacles.push_back(readObstacle(obstacles[i], origin, key));
+      if (const YAML::Node dynamic = obstacles[i]["dynamic"])
+        s.floating.push_back(readFloating(dynamic, origin, key + ".dynamic", i, s.obstacles.back()));
+    }
   }
   if (const YAML::Node cf = root["container_frame"]) {
     if (!cf.IsScalar() || cf.Scalar().empty()) fail(origin, "container_frame", "a tf frame name");
@@ -402,11 +436,21 @@ std::string resolveScenePath(const std::string& name, const std::string& scenes_
                    ": " + (known.empty() ? "none" : known) + ")");
 }
 
+bool Scene::floats(std::size_t index) const {
+  for (const FloatingBodySpec& f : floating)
+    if (f.obstacle == index) return true;
+  return false;
+}
+
 std::string Scene::validate() const {
   std::ostringstream err;
   const std::string p = solver.validate();
   if (!p.empty()) return "solver: " + p;
   if (container.isEmpty()) return "container is empty";
+  for (const FloatingBodySpec& f : floating) {
+    if (f.obstacle >= obstacles.size()) return "a floating body names obstacle " + std::to_string(f.obstacle) + ", which does not exist";
+    if (!(f.mass > 0.0 && std::isfinite(f.mass))) return "floating obstacle " + std::to_string(f.obstacle) + ": mass must be > 0";
+  }
   const float d = solver.particle_spacing;
   const double cells = (container.sizes() / d).cast<double>().prod();
   if (cells > 5.0e8) {

@@ -22,12 +22,14 @@ void PbfSolver::updateVelocities(float dt) {
   const SolidBoundaries solids = boundaries();
   const float friction = params_.wall_friction;
   const float layer = params_.particle_spacing;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  // `report(solid, point, displacement)` hears what each solid does to the particle (wrench
+  // tracking); a no-op otherwise, which the compiler removes.
+  auto settle = [&](std::size_t i, auto&& report) {
     // With zero iterations the prediction itself may have left the box.
-    Eigen::Vector3f p = solids.project(predicted_[i]);
+    Eigen::Vector3f p = solids.project(predicted_[i], report);
     Eigen::Vector3f normal, surface_motion;
-    if (friction > 0.0f && solids.contact(p, layer, normal, surface_motion)) {
+    int solid = 0;
+    if (friction > 0.0f && solids.contact(p, layer, normal, surface_motion, &solid)) {
       // Wall shear tau = rho0 c_f |u_t| u_t acts on the layer of thickness d next to the
       // surface: du_t/dt = -c_f |u_t| u_t / d. Backward Euler over the step gives
       // u_t' = u_t / (1 + c_f |u_t| dt / d), in displacements (t = u_t dt) below: stable at
@@ -36,11 +38,28 @@ void PbfSolver::updateVelocities(float dt) {
       const Eigen::Vector3f rel = (p - position_[i]) - surface_motion;
       const Eigen::Vector3f tangential = rel - rel.dot(normal) * normal;
       const float keep = 1.0f / (1.0f + friction * tangential.norm() / layer);
-      p -= (1.0f - keep) * tangential;
-      p = solids.project(p);
+      const Eigen::Vector3f drag = -(1.0f - keep) * tangential;
+      report(solid, p, drag);
+      p += drag;
+      p = solids.project(p, report);
     }
     velocity_[i] = (p - position_[i]) * inv_dt;
     position_[i] = p;
+  };
+  if (!track_wrenches_) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      settle(i, [](int, const Eigen::Vector3f&, const Eigen::Vector3f&) {});
+    return;
+  }
+#pragma omp parallel
+  {
+    const int thread = omp_get_thread_num();
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      settle(i, [&](int s, const Eigen::Vector3f& x, const Eigen::Vector3f& dx) {
+        wrench_sums_.add(thread, s, x, dx);
+      });
   }
 }
 

@@ -83,7 +83,7 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   advertise();
   const std::string error = rebuildFluid(scene, params);
   if (!error.empty()) throw std::runtime_error("cannot build the fluid: " + error);
-  applied_scene_ = scene_;
+  applied_scene_ = scene_without_robot_;
   pacer_.setFactor(config.real_time_factor);
   setRates(config.publish_rate, config.stats_rate);
   startReconfigure(config);
@@ -127,6 +127,13 @@ void FluidNode::readNodeSettings() {
     max_particles = 1000000;
   }
   max_particles_ = static_cast<std::size_t>(max_particles);
+  robot_source_ = readRobotSource(pnh_);
+  pnh_.param("wrench_rate", wrench_rate_, wrench_rate_);
+  if (!(wrench_rate_ > 0.0 && wrench_rate_ <= 1000.0)) {
+    ROS_WARN("pbf_node: ~wrench_rate %g is not in (0, 1000] Hz; using 30", wrench_rate_);
+    wrench_rate_ = 30.0;
+  }
+  track_wrenches_ = readBool(pnh_, "track_wrenches", track_wrenches_);
   double max_lag = 0.1;
   pnh_.param("max_lag", max_lag, max_lag);
   pacer_ = RealTimePacer(max_lag);
@@ -180,6 +187,7 @@ void FluidNode::advertise() {
   stats_pub_ = pnh_.advertise<SimulationStats>("stats", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  wrench_pubs_ = std::make_unique<SolidWrenchPublishers>(pnh_, wrench_rate_, track_wrenches_);
 
   reset_srv_ = pnh_.advertiseService("reset", &FluidNode::onResetService, this);
   pause_srv_ = pnh_.advertiseService("pause", &FluidNode::onPauseService, this);

@@ -25,7 +25,8 @@ bool FluidNode::onResetService(std_srvs::Trigger::Request&, std_srvs::Trigger::R
   // Shared, not a reference: after a shutdown timeout the task may still run.
   auto message = std::make_shared<std::string>();
   const std::string error = runOnSimulation([this, message]() -> std::string {
-    const pbf::Scene scene = scene_;  // copy: rebuildFluid replaces scene_
+    // Copy: rebuildFluid replaces it. The robot's solids are added afresh (a new URDF).
+    const pbf::Scene scene = scene_without_robot_;
     const std::string e = rebuildFluid(scene, solver_->params());
     if (e.empty()) {
       *message = "scene '" + scene_.name + "' reset to its initial state (" +

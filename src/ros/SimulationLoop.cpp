@@ -11,6 +11,7 @@
 #include "pbf_ros/ros/DomainTransform.h"
 #include "pbf_ros/ros/FluidNode.h"
 #include "pbf_ros/ros/SceneMarkers.h"
+#include "pbf_ros/ros/SolidWrenchTargets.h"
 #include "pbf_ros/ros/StatsConversion.h"
 #include "pbf_ros/core/SceneSetup.h"
 
@@ -91,8 +92,18 @@ void FluidNode::stepOnce() {
   } catch (const std::exception& e) {  // a non-finite pose: keep the previous one
     ROS_WARN_THROTTLE(10.0, "pbf_node: ignoring an attached frame's pose: %s", e.what());
   }
+  // Wrenches are measured only while someone wants them (a ~wrench subscriber) or a body
+  // floats on them.
+  solver_->setWrenchTracking(wrench_pubs_->wanted());
+  floating_.prepare(*solver_);
   const double time_before = solver_->time();
   last_stats_ = solver_->step();
+  if (!last_stats_.failed) {
+    wrench_pubs_->accumulate(scene_, *solver_, last_stats_.dt);  // at the poses of the step
+    floating_.afterStep(*solver_, last_stats_.dt);               // poses for the next one
+    publishFloatingPoses();
+  }
+  if (!solver_->wrenchTracking()) last_stats_.skipped_stages.push_back("wrench");
   sim_clock_ += solver_->time() - time_before;
   ++state_version_;
   nan_recoveries_ += static_cast<std::uint32_t>(last_stats_.nan_retries);
@@ -131,6 +142,7 @@ void FluidNode::publishDue(double wall, bool force) {
     next_stats_wall_ = nextDue(next_stats_wall_, stats_period_, wall);
     publishStats();
   }
+  wrench_pubs_->publishDue(wall, stamp());
   const double snapshot_rate = snapshots_.requestedRate();
   if (snapshot_rate > 0.0 && (force || wall >= next_snapshot_wall_)) {
     next_snapshot_wall_ = nextDue(next_snapshot_wall_, 1.0 / snapshot_rate, wall);
@@ -182,6 +194,7 @@ void FluidNode::publishStats() {
   context.render_skipped = !surface_status_.active.load();
   context.render_ms = surface_status_.last_frame_ms.load();
   context.render_frames = surface_status_.frames.load();
+  context.wrench_tracked = wrench_pubs_->takeTotal(context.solids_wrench);
   stats_pub_.publish(boost::make_shared<const SimulationStats>(toStatsMessage(last_stats_, context)));
   stats_rate_.tick();
 }
@@ -202,15 +215,23 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     next.solver = params;
     // Counted before anything is allocated: a fine spacing must not take gigabytes first.
     std::string why = next.validate();
-    if (why.empty()) why = next.checkParticleCount(max_particles_);
+    if (!why.empty()) return why;
+    std::vector<RobotLinkSolids> robot_links = addRobotSolids(next);
+    why = next.checkParticleCount(max_particles_);
     if (!why.empty()) return why;
     // A fresh solver: time and step count start again from 0; the old one keeps running
     // if anything below throws.
     auto fresh = std::make_unique<pbf::PbfSolver>();
     pbf::setUpSolver(next, *fresh);  // parameters, container, obstacles, particles
     seedAtCurrentPoses(next, *fresh);
+    pbf::FloatingBodies floating = pbf::makeFloatingBodies(next);
     solver_ = std::move(fresh);
     scene_ = next;
+    scene_without_robot_ = scene;
+    scene_without_robot_.solver = params;
+    robot_links_ = std::move(robot_links);
+    floating_ = std::move(floating);
+    wrench_pubs_->setTargets(wrenchTargets(scene_, robot_links_, domain_frame_));
   } catch (const std::exception& e) {
     return e.what();
   }
@@ -224,8 +245,38 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
   pacer_.restart(wallNow(), sim_clock_);
   next_cloud_wall_ = next_stats_wall_ = next_snapshot_wall_ = 0.0;  // publish promptly
   announceScene();
+  last_floating_tf_wall_ = 0.0;
+  publishFloatingPoses();
   updateHealth();
   return "";
+}
+
+// Floating bodies' poses on tf (fluid_domain -> their frame), at most every 10 ms of wall
+// time: rviz draws their markers there, and other nodes can follow them.
+void FluidNode::publishFloatingPoses() {
+  if (floating_.empty()) return;
+  const double wall = wallNow();
+  if (wall - last_floating_tf_wall_ < 0.01) return;
+  last_floating_tf_wall_ = wall;
+  if (!floating_tf_) floating_tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+  const ros::Time now = stamp();
+  for (const auto& [index, body] : floating_.bodies()) {
+    const Eigen::Isometry3f& pose = body.shape().pose;
+    if (!pose.matrix().allFinite() || index >= scene_.obstacles.size()) continue;
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = now;
+    t.header.frame_id = domain_frame_;
+    t.child_frame_id = scene_.obstacles[index].frame;
+    t.transform.translation.x = pose.translation().x();
+    t.transform.translation.y = pose.translation().y();
+    t.transform.translation.z = pose.translation().z();
+    const Eigen::Quaternionf q(pose.linear());
+    t.transform.rotation.x = q.x();
+    t.transform.rotation.y = q.y();
+    t.transform.rotation.z = q.z();
+    t.transform.rotation.w = q.w();
+    floating_tf_->sendTransform(t);
+  }
 }
 
 // A reset or scene switch while attached frames have moved: the container, the obstacles
@@ -247,7 +298,7 @@ void FluidNode::seedAtCurrentPoses(const pbf::Scene& scene, pbf::PbfSolver& solv
   };
   if (const auto* pose = poseOf(scene.container_frame)) solver.setContainerPose(*pose);
   for (std::size_t k = 0; k < scene.obstacles.size(); ++k)
-    if (const auto* pose = poseOf(scene.obstacles[k].frame))
+    if (const auto* pose = scene.floats(k) ? nullptr : poseOf(scene.obstacles[k].frame))
       solver.setObstaclePose(k, *pose * scene.obstacles[k].offset);
   bool moved = false;
   for (std::size_t b = 0; b < scene.fluid.size(); ++b) moved = moved || poseOf(scene.blockFrame(b));

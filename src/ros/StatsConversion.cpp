@@ -32,6 +32,15 @@ SimulationStats toStatsMessage(const pbf::StepStats& stats, const StatsContext& 
   msg.time_cloud_ms = context.cloud_skipped ? 0.0 : finiteOr0(context.cloud_ms);
   msg.time_render_ms = context.render_skipped ? 0.0 : finiteOr0(context.render_ms);
   msg.surface_frames = context.render_frames;
+  msg.wrench_tracked = context.wrench_tracked && context.solids_wrench.allFinite();
+  if (msg.wrench_tracked) {
+    msg.solids_wrench.force.x = context.solids_wrench.force.x();
+    msg.solids_wrench.force.y = context.solids_wrench.force.y();
+    msg.solids_wrench.force.z = context.solids_wrench.force.z();
+    msg.solids_wrench.torque.x = context.solids_wrench.torque.x();
+    msg.solids_wrench.torque.y = context.solids_wrench.torque.y();
+    msg.solids_wrench.torque.z = context.solids_wrench.torque.z();
+  }
   msg.skipped_stages = stats.skipped_stages;
   if (context.cloud_skipped) msg.skipped_stages.push_back("cloud");
   if (context.render_skipped) msg.skipped_stages.push_back("surface");

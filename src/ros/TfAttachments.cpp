@@ -15,8 +15,11 @@ TfAttachments::TfAttachments(std::string domain_frame)
 
 bool TfAttachments::needed(const pbf::Scene& scene) {
   return !scene.container_frame.empty() ||
-         std::any_of(scene.obstacles.begin(), scene.obstacles.end(),
-                     [](const pbf::Obstacle& o) { return !o.frame.empty(); }) ||
+         [&scene] {  // floating obstacles' frames are published by the node, not read
+           for (std::size_t k = 0; k < scene.obstacles.size(); ++k)
+             if (!scene.obstacles[k].frame.empty() && !scene.floats(k)) return true;
+           return false;
+         }() ||
          std::any_of(scene.fluid.begin(), scene.fluid.end(),
                      [](const pbf::FluidBlock& b) { return !b.frame.empty(); });
 }
@@ -79,7 +82,7 @@ std::vector<std::string> TfAttachments::update(const pbf::Scene& scene, pbf::Pbf
   const std::size_t n = std::min(scene.obstacles.size(), solver.obstacles().size());
   for (std::size_t k = 0; k < n; ++k) {
     const pbf::Obstacle& o = scene.obstacles[k];
-    if (o.frame.empty()) continue;
+    if (o.frame.empty() || scene.floats(k)) continue;
     if (lookup(o.frame, time, max_wait, pose))
       solver.setObstaclePose(k, pose * o.offset);
     else if (std::find(missing.begin(), missing.end(), o.frame) == missing.end())

@@ -96,4 +96,38 @@ TEST(Scene, SolverYamlIsAllOrNothing) {
   EXPECT_FLOAT_EQ(p.gravity.z(), -1.0f);
 }
 
+TEST(Scene, DynamicObstaclesFloatWithTheirMassAndPublishedFrame) {
+  const std::string head =
+      "container: {min: [0, 0, 0], max: [1, 1, 1]}\n"
+      "fluid: [{box: {min: [0, 0, 0], max: [1, 1, 0.5]}}]\n"
+      "solver: {particle_spacing: 0.05}\n";
+  const pbf::Scene s = pbf::loadSceneString(
+      head + "obstacles:\n"
+             "  - {box: {center: [0.5, 0.5, 0.5], half_extents: [0.1, 0.1, 0.05]}, dynamic: {density: 500}}\n"
+             "  - {frame: ball, sphere: {center: [0.2, 0.2, 0.8], radius: 0.05},\n"
+             "     dynamic: {mass: 2.0, inertia: [0.01, 0.02, 0.03]}}\n"
+             "  - {box: {center: [0.8, 0.8, 0.2], half_extents: [0.05, 0.05, 0.05]}}\n",
+      "floating.yaml");
+  ASSERT_EQ(s.floating.size(), 2u);
+  EXPECT_EQ(s.floating[0].obstacle, 0u);
+  EXPECT_NEAR(s.floating[0].mass, 500.0 * 0.2 * 0.2 * 0.1, 1e-6);
+  EXPECT_EQ(s.obstacles[0].frame, "floating_0");  // the frame the node publishes it on
+  EXPECT_TRUE(s.obstacles[0].offset.isApprox(Eigen::Isometry3f::Identity()));
+  EXPECT_TRUE(s.obstacles[0].pose.translation().isApprox(Eigen::Vector3f(0.5f, 0.5f, 0.5f)));
+  EXPECT_EQ(s.obstacles[1].frame, "ball");
+  EXPECT_DOUBLE_EQ(s.floating[1].mass, 2.0);
+  EXPECT_NEAR(s.floating[1].inertia(2, 2), 0.03, 1e-7);
+  EXPECT_TRUE(s.floats(1));
+  EXPECT_FALSE(s.floats(2));
+  EXPECT_NE(errorOf(head + "obstacles: [{sphere: {center: [0.5, 0.5, 0.5], radius: 0.1}, dynamic: {mass: 1, density: 2}}]\n")
+                .find("obstacles[0].dynamic"),
+            std::string::npos);
+  EXPECT_NE(errorOf(head + "obstacles: [{sphere: {center: [0.5, 0.5, 0.5], radius: 0.1}, dynamic: {density: -5}}]\n")
+                .find("positive"),
+            std::string::npos);
+  EXPECT_NE(errorOf(head + "obstacles: [{sphere: {center: [0.5, 0.5, 0.5], radius: 0.1}, dynamic: {mass: 1, inertia: [1, 0, 1]}}]\n")
+                .find("inertia"),
+            std::string::npos);
+}
+
 }  // namespace

@@ -31,13 +31,30 @@ class SolidBoundaries {
 
   // p moved out of every obstacle and into the container, keeping particle_radius from
   // each surface. The container is applied last: no particle ever leaves it.
-  Eigen::Vector3f project(const Eigen::Vector3f& p) const;
+  Eigen::Vector3f project(const Eigen::Vector3f& p) const {
+    return project(p, [](int, const Eigen::Vector3f&, const Eigen::Vector3f&) {});
+  }
+  // The same, telling report(solid, point, displacement) what each solid did (solid
+  // numbering below). With a no-op report this is project() itself: one implementation.
+  template <typename Report>
+  Eigen::Vector3f project(const Eigen::Vector3f& p, Report&& report) const;
 
   // For a particle at p (after project): whether a surface lies within `reach` of it, its
   // unit normal, and how far that surface point moved during the step (from the previous
-  // poses). Used for wall friction.
+  // poses). Used for wall friction. `solid`, when given, receives which solid it is.
   bool contact(const Eigen::Vector3f& p, float reach, Eigen::Vector3f& normal,
-               Eigen::Vector3f& surface_motion) const;
+               Eigen::Vector3f& surface_motion, int* solid = nullptr) const;
+
+  // Solids by number, for what the fluid does to each (SolidWrench.h): the container's six
+  // walls in its own frame (-x, +x, -y, +y, -z, +z), then obstacle k as kContainerFaces + k.
+  static constexpr int kContainerFaces = 6;
+  std::size_t solidCount() const { return kContainerFaces + obstacles_->size(); }
+
+  // density()'s gradient split by the solid that lends it: part(solid, gradient) for each
+  // solid near p. The container's gradient is split by axis: each component belongs to the
+  // nearer wall on that axis (exact unless the container is narrower than two kernel reaches).
+  template <typename Part>
+  void densityGradientParts(const Eigen::Vector3f& p, Part&& part) const;
 
   // Poses at the start of the step, for surface_motion (default: not moving).
   void setPreviousPoses(const Eigen::Isometry3f& container,
@@ -65,5 +82,60 @@ class SolidBoundaries {
   const LatticeBoundary* lattice_;
   float reach_, radius_;
 };
+
+template <typename Report>
+Eigen::Vector3f SolidBoundaries::project(const Eigen::Vector3f& p_in, Report&& report) const {
+  Eigen::Vector3f p = p_in;
+  for (std::size_t k = 0; k < obstacles_->size(); ++k) {
+    const Obstacle& o = (*obstacles_)[k];
+    if ((p - o.pose.translation()).squaredNorm() > (o.boundingRadius() + radius_) * (o.boundingRadius() + radius_)) continue;
+    Eigen::Vector3f n;
+    const float s = o.signedDistance(p, n);
+    if (s < radius_) {
+      const Eigen::Vector3f push = (radius_ - s) * n;
+      report(kContainerFaces + static_cast<int>(k), p, push);
+      p += push;
+    }
+  }
+  if (!has_container_) return p;
+  const Eigen::Vector3f lo = box_.min() + Eigen::Vector3f::Constant(radius_);
+  const Eigen::Vector3f hi = box_.max() - Eigen::Vector3f::Constant(radius_);
+  const Eigen::Vector3f q = posed_ ? Eigen::Vector3f(inverse_ * p) : p;
+  const Eigen::Vector3f clamped = q.cwiseMax(lo).cwiseMin(hi);
+  for (int a = 0; a < 3; ++a) {
+    if (clamped[a] == q[a]) continue;
+    Eigen::Vector3f push = Eigen::Vector3f::Zero();
+    push[a] = clamped[a] - q[a];
+    report(2 * a + (push[a] > 0.0f ? 0 : 1), p, posed_ ? Eigen::Vector3f(pose_.linear() * push) : push);
+  }
+  return posed_ ? Eigen::Vector3f(pose_ * clamped) : clamped;
+}
+
+template <typename Part>
+void SolidBoundaries::densityGradientParts(const Eigen::Vector3f& p, Part&& part) const {
+  if (has_container_) {
+    const Eigen::Vector3f q = posed_ ? Eigen::Vector3f(inverse_ * p) : p;
+    float f = 0.0f;
+    Eigen::Vector3f g = Eigen::Vector3f::Zero();
+    if (containerDensity(q, f, g)) {
+      for (int a = 0; a < 3; ++a) {
+        if (g[a] == 0.0f) continue;
+        Eigen::Vector3f axis_part = Eigen::Vector3f::Zero();
+        axis_part[a] = g[a];
+        const bool min_wall = q[a] - box_.min()[a] < box_.max()[a] - q[a];
+        part(2 * a + (min_wall ? 0 : 1), posed_ ? Eigen::Vector3f(pose_.linear() * axis_part) : axis_part);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < obstacles_->size(); ++k) {
+    const Obstacle& o = (*obstacles_)[k];
+    const float r = o.boundingRadius() + reach_;
+    if ((p - o.pose.translation()).squaredNorm() > r * r) continue;
+    float f = 0.0f;
+    Eigen::Vector3f g = Eigen::Vector3f::Zero();
+    const bool hit = o.shape == Obstacle::Shape::Box ? boxDensity(o, p, f, g) : curvedDensity(o, p, f, g);
+    if (hit) part(kContainerFaces + static_cast<int>(k), g);
+  }
+}
 
 }  // namespace pbf

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pbf_ros/core/Obstacle.h"
+#include "pbf_ros/core/SolidWrench.h"
 #include "pbf_ros/core/SolverParams.h"
 #include "pbf_ros/core/StepStats.h"
 
@@ -79,6 +80,13 @@ class PbfSolver {
   // The dt the next step() would take (fixed, or CFL from the current velocities).
   float nextTimeStep() const;
 
+  // The fluid's force and torque on every solid (SolidWrench.h), measured while on. Off (the
+  // default) it costs nothing; on, each step also records what every solid did to the fluid.
+  void setWrenchTracking(bool on) { track_wrenches_ = on; }
+  bool wrenchTracking() const { return track_wrenches_; }
+  // Of the last step (valid == false when tracking was off or the step failed).
+  const SolidWrenches& wrenches() const { return wrenches_; }
+
  private:
   bool attemptStep(float dt, StepStats& stats);
   bool predict(float dt);
@@ -93,6 +101,9 @@ class PbfSolver {
   void applyDeltasAndBoundary();
   void updateVelocities(float dt);
   SolidBoundaries boundaries() const;
+  // Wrench tracking (WrenchTracking.cpp): what the solids did to the particles, by solid.
+  void recordBoundaryDensityPush(const SolidBoundaries& solids);
+  void applyDeltasRecordingBoundary(const SolidBoundaries& solids);
   void computeDensityAndVorticity();
   void applyViscosityAndVorticity(float dt);
   void enforceSpeedLimit(float dt, StepStats& stats);
@@ -136,6 +147,9 @@ class PbfSolver {
 
   std::unique_ptr<NeighborGrid> grid_;
   std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h
+  bool track_wrenches_ = false;
+  WrenchAccumulator wrench_sums_;  // of the attempt in progress
+  SolidWrenches wrenches_;         // of the last step
   bool lists_valid_ = false;
   float current_dt_ = 0.0f;  // dt of the attempt in progress (s_corr scales with it)
   double time_ = 0.0;

@@ -43,12 +43,21 @@ constexpr std::size_t kMaxSceneFileBytes = 1 << 20;  // 1 MiB (the shipped scene
 constexpr std::size_t kMaxFluidBlocks = 1000;
 constexpr std::size_t kMaxObstacles = 256;
 
+// An obstacle the fluid moves (RigidBody.h, FloatingBodies.h). Its obstacle's `frame` is the
+// tf frame the node publishes the body's pose on (offset identity), `pose` where it starts.
+struct FloatingBodySpec {
+  std::size_t obstacle = 0;  // index into Scene::obstacles
+  double mass = 0.0;         // [kg]
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about its origin, body axes [kg m^2]
+};
+
 struct Scene {
   std::string name;
   std::string source;                   // file it came from ("" when built in code)
   Eigen::AlignedBox3f container;        // in the fluid_domain frame [m]
   std::vector<FluidBlock> fluid;
   std::vector<Obstacle> obstacles;      // poses in fluid_domain (or offsets in their frame)
+  std::vector<FloatingBodySpec> floating;  // obstacles marked `dynamic`
   // tf frame the container is attached to ("" = fixed in fluid_domain): the node moves
   // the container with it (sloshing, carrying).
   std::string container_frame;
@@ -70,6 +79,9 @@ struct Scene {
   // obstacles leave none). Costs O(blocks) for a lattice that clearly fits or clearly does
   // not, and never walks more than a few times max_particles lattice points.
   std::string checkParticleCount(std::size_t max_particles) const;
+
+  // Whether obstacle `index` floats (the node moves it, not tf).
+  bool floats(std::size_t index) const;
 
   // The frame block `index` is given in (its own, else container_frame; "" = fluid_domain).
   const std::string& blockFrame(std::size_t index) const;

@@ -32,16 +32,20 @@
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
 
 #include <pbf_ros/FluidConfig.h>
 
+#include "pbf_ros/core/FloatingBodies.h"
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
 #include "pbf_ros/ros/FluidDiagnostics.h"
 #include "pbf_ros/ros/RealTimePacer.h"
 #include "pbf_ros/ros/ReconfigureRecord.h"
+#include "pbf_ros/ros/RobotSource.h"
 #include "pbf_ros/ros/SimulationTasks.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
+#include "pbf_ros/ros/SolidWrenchPublishers.h"
 #include "pbf_ros/ros/SurfaceRenderStatus.h"
 #include "pbf_ros/ros/TfAttachments.h"
 #include "pbf_ros/ros/TopicRateDiagnostic.h"
@@ -117,6 +121,10 @@ class FluidNode {
   std::string rebuildFluid(const pbf::Scene& scene, const pbf::SolverParams& params);
   void announceScene();  // markers + static tf
   void seedAtCurrentPoses(const pbf::Scene& scene, pbf::PbfSolver& solver);
+  // --- robot links as solids (FluidNodeRobot.cpp); simulation thread ---
+  // Reads the URDF now and appends the links' solids (at their tf poses) to scene.obstacles.
+  std::vector<RobotLinkSolids> addRobotSolids(pbf::Scene& scene);
+  void publishFloatingPoses();  // tf of the scene's floating bodies
   void anchorStamps();   // stamps continue from the ROS time now (start, resume, rebuild)
   void setRates(double publish_rate, double stats_rate);
   void updateHealth();
@@ -138,6 +146,9 @@ class FluidNode {
   bool publish_clock_ = false;
   std::size_t max_particles_ = 1000000;
   HealthThresholds thresholds_;
+  RobotSource robot_source_;
+  double wrench_rate_ = 30.0;     // ~wrench/* [Hz]
+  bool track_wrenches_ = false;   // measure wrenches even with no ~wrench subscriber (~stats)
 
   // ROS interface.
   ros::Publisher particles_pub_, stats_pub_, markers_pub_, clock_pub_;
@@ -164,7 +175,10 @@ class FluidNode {
 
   // Simulation thread state (set up in the constructor before the thread starts).
   std::unique_ptr<pbf::PbfSolver> solver_;
-  pbf::Scene scene_;
+  pbf::Scene scene_;                   // what runs: the scene file's plus the robot's solids
+  pbf::Scene scene_without_robot_;     // what a ~reset starts from (the URDF is read again)
+  std::vector<RobotLinkSolids> robot_links_;  // which of scene_.obstacles are whose
+  bool robot_built_once_ = false;      // later builds wait less for the links' tf
   RealTimePacer pacer_;
   std::atomic<bool> paused_{false};    // written by the simulation thread only
   bool stepped_since_resume_ = false;
@@ -186,6 +200,10 @@ class FluidNode {
   SnapshotBuffer snapshots_;
   SurfaceRenderStatus surface_status_;
   std::unique_ptr<TfAttachments> attachments_;  // moves solids attached to tf frames
+  std::unique_ptr<SolidWrenchPublishers> wrench_pubs_;  // ~wrench/<solid>
+  pbf::FloatingBodies floating_;       // the scene's dynamic obstacles (moved after each step)
+  std::unique_ptr<tf2_ros::TransformBroadcaster> floating_tf_;
+  double last_floating_tf_wall_ = 0.0;
   std::atomic<bool> running_{false};
   std::thread sim_thread_;
 

@@ -8,6 +8,7 @@
 
 #include <pbf_ros/SimulationStats.h>
 
+#include "pbf_ros/core/SolidWrench.h"
 #include "pbf_ros/core/StepStats.h"
 
 namespace pbf_ros {
@@ -26,6 +27,8 @@ struct StatsContext {
   bool render_skipped = false;      // no image subscriber (or no GL): nothing rendered
   double render_ms = 0.0;           // last surface frame
   std::uint64_t render_frames = 0;  // surface frames since the node started
+  bool wrench_tracked = false;      // solids_wrench was measured (someone wants wrenches)
+  pbf::Wrench solids_wrench;        // fluid on all solids, fluid_domain, about its origin
 };
 
 // Non-finite numbers become 0 (NaN never reaches a publisher; nan_recoveries tells).
