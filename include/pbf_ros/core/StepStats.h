@@ -28,8 +28,8 @@ struct StepStats {
   bool failed = false;                   // no attempt succeeded: state left unchanged
   double initial_density_error = 0.0;    // mean compression of the prediction, before the solve
   bool neighbor_lists_reused = false;
-  int neighbor_rebuilds_in_step = 0;
-  std::size_t grid_cells = 0;            // cells of the neighbour grid (it covers the fluid)     // skin exceeded by the corrections: lists rebuilt
+  int neighbor_rebuilds_in_step = 0;     // skin exceeded by the corrections: lists rebuilt
+  std::size_t grid_cells = 0;            // cells of the neighbour grid (it covers the fluid)
   bool speed_limited = false;            // the max_speed_factor cap acted this step
   StageTimes times;
   std::vector<std::string> skipped_stages;  // e.g. "vorticity", "xsph", "scorr"
