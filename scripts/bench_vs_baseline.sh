@@ -12,8 +12,9 @@
 #   --filter REGEX  benchmark filter (default: the 20k dam-break step, 1 and 2 threads)
 #   --baseline REV  baseline commit (default e7d8d7f, the last main before issue 10)
 #
-# Baseline recipe: `git worktree add --detach build/baseline/src REV`, then a plain Release
-# configure of that tree into build/baseline/build and `make pbf_step_benchmark`. The
+# Baseline recipe: `git worktree add --detach $BASE_DIR/src REV` (BASE_DIR: $PBF_BASELINE_DIR,
+# default ~/.cache/pbf_ros/baseline), then a plain Release configure of that tree into
+# $BASE_DIR/build and `make pbf_step_benchmark`. The
 # baseline's own CMake defaults apply (it built with -march=native).
 # Output: build/bench_vs_baseline/<build>_<round>.json and a median table on stdout.
 set -euo pipefail
@@ -35,7 +36,9 @@ while [ $# -gt 0 ]; do
   shift
 done
 
-BASE_DIR="$ROOT/build/baseline"
+# Outside the source tree: a second pbf_ros package below this one would make
+# `roslaunch pbf_ros ...` find two of every launch file.
+BASE_DIR="${PBF_BASELINE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/pbf_ros/baseline}"
 OUT="$ROOT/build/bench_vs_baseline"
 mkdir -p "$BASE_DIR" "$OUT"
 
