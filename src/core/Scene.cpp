@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "pbf_ros/core/RigidBody.h"
 
@@ -227,22 +228,18 @@ Obstacle readObstacle(const YAML::Node& n, const std::string& origin, const std:
     o.radius = readFloat(required(sp, "radius", origin, key + ".sphere.radius"), origin, key + ".sphere.radius");
     ++shapes;
   }
-  if (const YAML::Node c = n["capsule"]) {
-    checkKeys(c, {"center", "radius", "half_length", "rpy"}, origin, key + ".capsule.");
-    o.shape = Obstacle::Shape::Capsule;
-    o.offset = readPose(c, origin, key + ".capsule");
-    o.radius = readFloat(required(c, "radius", origin, key + ".capsule.radius"), origin, key + ".capsule.radius");
-    o.half_length = readFloat(required(c, "half_length", origin, key + ".capsule.half_length"), origin,
-                              key + ".capsule.half_length");
-    ++shapes;
-  }
-  if (const YAML::Node c = n["cylinder"]) {
-    checkKeys(c, {"center", "radius", "half_length", "rpy"}, origin, key + ".cylinder.");
-    o.shape = Obstacle::Shape::Cylinder;
-    o.offset = readPose(c, origin, key + ".cylinder");
-    o.radius = readFloat(required(c, "radius", origin, key + ".cylinder.radius"), origin, key + ".cylinder.radius");
-    o.half_length = readFloat(required(c, "half_length", origin, key + ".cylinder.half_length"), origin,
-                              key + ".cylinder.half_length");
+  // Capsule and cylinder are both a radius and a half length along the local z axis.
+  for (const auto& [name, shape] : {std::pair{"capsule", Obstacle::Shape::Capsule},
+                                    std::pair{"cylinder", Obstacle::Shape::Cylinder}}) {
+    const YAML::Node c = n[name];
+    if (!c) continue;
+    const std::string at = key + "." + name;
+    checkKeys(c, {"center", "radius", "half_length", "rpy"}, origin, at + ".");
+    o.shape = shape;
+    o.offset = readPose(c, origin, at);
+    o.radius = readFloat(required(c, "radius", origin, at + ".radius"), origin, at + ".radius");
+    o.half_length =
+        readFloat(required(c, "half_length", origin, at + ".half_length"), origin, at + ".half_length");
     ++shapes;
   }
   if (shapes != 1) fail(origin, key, "exactly one of 'box', 'sphere', 'capsule', 'cylinder'");

@@ -27,22 +27,23 @@ void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
   permute(id_, reorder_id_scratch_);
 }
 
-void PbfSolver::updateNeighbors(StepStats& stats) {
-  const std::size_t n = size();
-  const float h = params_.supportRadius();
-  const float skin = params_.neighbor_skin * h;
-  if (skin > 0.0f && lists_valid_ && build_position_.size() == n) {
-    // Reuse while every particle moved less than half the skin since the build: then no
-    // pair closer than h now was farther than h + skin then.
-    const float limit2 = 0.25f * skin * skin;
-    float moved2 = 0.0f;
+// Reused lists stay exact while every particle is within half the skin of where it was at
+// the build: then no pair closer than h now was farther than h + skin then.
+bool PbfSolver::listsStillValidFor(const std::vector<Eigen::Vector3f>& points) const {
+  const float skin = params_.neighbor_skin * params_.supportRadius();
+  if (skin <= 0.0f || !lists_valid_ || build_position_.size() != points.size()) return false;
+  const float limit2 = 0.25f * skin * skin;
+  float moved2 = 0.0f;
 #pragma omp parallel for reduction(max : moved2) schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
-      moved2 = std::max(moved2, (predicted_[i] - build_position_[i]).squaredNorm());
-    if (moved2 < limit2) {
-      stats.neighbor_lists_reused = true;
-      return;
-    }
+  for (std::size_t i = 0; i < points.size(); ++i)
+    moved2 = std::max(moved2, (points[i] - build_position_[i]).squaredNorm());
+  return moved2 < limit2;
+}
+
+void PbfSolver::updateNeighbors(StepStats& stats) {
+  if (listsStillValidFor(predicted_)) {
+    stats.neighbor_lists_reused = true;
+    return;
   }
   rebuildNeighborLists(predicted_);
 }
@@ -68,19 +69,11 @@ void PbfSolver::rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points)
   lists_valid_ = true;
 }
 
-// Reused lists stay exact while every particle is within half the skin of where it was at
-// the build: then no pair closer than h now was farther than h + skin then. The solver's
-// corrections move particles too, so this is checked after each of them, not only once
-// per step; a particle that went too far triggers a rebuild right there.
+// The solver's corrections move particles too, so the skin is checked after each of them,
+// not only once per step; a particle that went too far triggers a rebuild right there.
 void PbfSolver::keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats) {
-  const float skin = params_.neighbor_skin * params_.supportRadius();
-  if (skin <= 0.0f) return;  // built once per step on the predicted positions (the seed)
-  const float limit2 = 0.25f * skin * skin;
-  float moved2 = 0.0f;
-#pragma omp parallel for reduction(max : moved2) schedule(static)
-  for (std::size_t i = 0; i < size(); ++i)
-    moved2 = std::max(moved2, (points[i] - build_position_[i]).squaredNorm());
-  if (moved2 < limit2) return;
+  if (params_.neighbor_skin <= 0.0f) return;  // built once per step on the predicted positions
+  if (listsStillValidFor(points)) return;
   rebuildNeighborLists(points);
   ++stats.neighbor_rebuilds_in_step;
 }

@@ -16,6 +16,32 @@
 
 namespace pbf {
 
+namespace {
+
+// sum over neighbours j within h of term(j, V_j grad_i W_ij), V_j = m / rho_j: the SPH
+// gradient-weighted sums of the vorticity passes (curl of v, gradient of |omega|).
+template <typename Term>
+Eigen::Vector3f sumVolumeGradients(const Kernels& k, float mass, std::size_t i,
+                                   const std::vector<Eigen::Vector3f>& position,
+                                   const std::vector<float>& density,
+                                   const std::vector<std::uint32_t>& id,
+                                   const std::vector<std::uint32_t>& off,
+                                   const std::vector<std::uint32_t>& nbr, Term term) {
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+    const std::uint32_t j = nbr[e];
+    Pair p;
+    p.r = position[i] - position[j];
+    p.r2 = p.r.squaredNorm();
+    if (p.r2 >= k.h2) continue;
+    p.rlen = std::sqrt(p.r2);
+    sum += term(j, Eigen::Vector3f((mass / density[j]) * spikyGradientSafe(k, p, id[i], id[j])));
+  }
+  return sum;
+}
+
+}  // namespace
+
 void PbfSolver::updateVelocities(float dt) {
   const std::size_t n = size();
   const float inv_dt = 1.0f / dt;
@@ -100,18 +126,10 @@ void PbfSolver::computeDensityAndVorticity() {
   // omega_i = sum_j V_j grad_i W_ij x (v_j - v_i): the SPH curl of the velocity.
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f pi = position_[i], vi = velocity_[i];
-    Eigen::Vector3f w = Eigen::Vector3f::Zero();
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      const std::uint32_t j = nbr[e];
-      Pair p;
-      p.r = pi - position_[j];
-      p.r2 = p.r.squaredNorm();
-      if (p.r2 >= k.h2) continue;
-      p.rlen = std::sqrt(p.r2);
-      w += (mass / density_[j]) * spikyGradientSafe(k, p, id_[i], id_[j]).cross(velocity_[j] - vi);
-    }
-    vorticity_[i] = w;
+    const Eigen::Vector3f vi = velocity_[i];
+    vorticity_[i] = sumVolumeGradients(
+        k, mass, i, position_, density_, id_, off, nbr,
+        [&](std::uint32_t j, const Eigen::Vector3f& vgrad) { return vgrad.cross(velocity_[j] - vi); });
   }
 }
 
@@ -137,26 +155,17 @@ void PbfSolver::applyViscosityAndVorticity(float dt) {
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f pi = position_[i], vi = velocity_[i];
-    Eigen::Vector3f v = vi;
+    Eigen::Vector3f v = velocity_[i];
     if (c > 0.0f) {  // XSPH (eq 10) with the m_j / rho_j factor
       const VectorSum s = xsphSums(arrays, pc, i, V, density_.data());
       v += c * Eigen::Vector3f(s.x, s.y, s.z);
     }
     if (vorticity) {
       // eta = grad |omega|, SPH difference form (exact for a constant field).
-      Eigen::Vector3f eta = Eigen::Vector3f::Zero();
       const float wi = vorticity_norm_[i];
-      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-        const std::uint32_t j = nbr[e];
-        Pair p;
-        p.r = pi - position_[j];
-        p.r2 = p.r.squaredNorm();
-        if (p.r2 >= k.h2) continue;
-        p.rlen = std::sqrt(p.r2);
-        eta += (mass / density_[j] * (vorticity_norm_[j] - wi)) *
-               spikyGradientSafe(k, p, id_[i], id_[j]);
-      }
+      const Eigen::Vector3f eta = sumVolumeGradients(
+          k, mass, i, position_, density_, id_, off, nbr,
+          [&](std::uint32_t j, const Eigen::Vector3f& vgrad) { return (vorticity_norm_[j] - wi) * vgrad; });
       const float eta_len = eta.norm();
       // No gradient, no direction: confinement has nothing to amplify there.
       if (eta_len > 1e-12f) v += (dt * veps) * (eta / eta_len).cross(vorticity_[i]);

@@ -92,6 +92,7 @@ class PbfSolver {
   bool predict(float dt);
   void updateNeighbors(StepStats& stats);
   void rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points);
+  bool listsStillValidFor(const std::vector<Eigen::Vector3f>& points) const;
   void keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats);
   void computeLambdas(float& avg_error);
   struct Scorr;
