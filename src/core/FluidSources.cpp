@@ -137,8 +137,9 @@ std::vector<Eigen::Vector3f> blockSites(const FluidBlock& b, float d) {
     lo = b.center - Eigen::Vector3f::Constant(b.radius);
     hi = b.center + Eigen::Vector3f::Constant(b.radius);
   }
-  // As Scene::initialParticles: cell-centred, the lattice centred in the block.
-  const Eigen::Vector3i n = ((hi - lo) / d).array().floor().cast<int>().max(1);
+  // As Scene::initialParticles: cell-centred, the lattice centred in the block; a size that
+  // is a whole number of spacings up to round-off (0.33f - 0.21f = 3.9999 d) gets them all.
+  const Eigen::Vector3i n = ((hi - lo) / d + Eigen::Vector3f::Constant(1e-3f)).array().floor().cast<int>().max(1);
   const Eigen::Vector3f start = lo + 0.5f * ((hi - lo) - (n.cast<float>() * d)) +
                                 Eigen::Vector3f::Constant(0.5f * d);
   for (int z = 0; z < n.z(); ++z)
