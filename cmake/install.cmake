@@ -13,6 +13,8 @@ install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION
 # developer tools of the source tree, not installed).
 catkin_install_python(PROGRAMS
   scripts/move_frame.py
+  scripts/pouring_arm_trajectory.py
+  scripts/static_frames.py
   scripts/measure_rtf.py
   scripts/rviz_for_node.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -9,7 +9,11 @@ half its real-time factor on a small machine. They are removed rather than untic
 1.14 re-enables an image display whose panel its saved window state shows, and subscribes.
 
   rviz_for_node.py [--node NAME] [--surface true|false] [--spacing METRES]
+                   [--robot-description PARAM] [--wrench SOLID ...]
                    [--config IN.rviz] [--output OUT.rviz] [--no-rviz] [rviz args...]
+
+--robot-description adds a RobotModel display of the URDF in PARAM; each --wrench SOLID adds
+a Wrench display of the node's ~wrench/SOLID (e.g. a robot link: cup).
 
 OUT.rviz defaults to $ROS_HOME/pbf_ros/rviz_<node>.rviz (~/.ros/...).
 
@@ -62,6 +66,34 @@ def fit_config(config, node, spacing, surface):
     return config
 
 
+def robot_display(param):
+    """An rviz RobotModel display of the URDF in parameter `param` (half transparent, so the
+    fluid inside the robot's cup shows)."""
+    return {'Alpha': 0.6, 'Class': 'rviz/RobotModel', 'Collision Enabled': False,
+            'Enabled': True, 'Name': 'Robot (%s)' % param, 'Robot Description': param,
+            'TF Prefix': '', 'Update Interval': 0, 'Value': True, 'Visual Enabled': True}
+
+
+def wrench_display(node, solid):
+    """An rviz Wrench display of the node's ~wrench/<solid>: 5 cm of arrow per newton."""
+    return {'Accept NaN Values': False, 'Alpha': 1, 'Arrow Width': 0.3,
+            'Class': 'rviz/WrenchStamped', 'Enabled': True, 'Force Arrow Scale': 0.05,
+            'Force Color': '204; 51; 51', 'History Length': 1,
+            'Name': 'Wrench on %s (~wrench/%s)' % (solid, solid), 'Queue Size': 10,
+            'Topic': node + '/wrench/' + solid, 'Torque Arrow Scale': 0.5,
+            'Torque Color': '204; 204; 51', 'Unreliable': False, 'Value': True}
+
+
+def add_robot_and_wrenches(config, node, robot_description, wrenches):
+    """Appends the RobotModel and Wrench displays asked for; changes `config` in place."""
+    displays = config['Visualization Manager']['Displays']
+    if robot_description:
+        displays.append(robot_display(robot_description))
+    for solid in wrenches or []:
+        displays.append(wrench_display(node, solid))
+    return config
+
+
 def node_spacing(node, wait):
     """The running node's particle_spacing, or None (with a warning) if it does not come."""
     import rospy  # only when asked to look at a running node
@@ -83,6 +115,10 @@ def main(argv):
     parser.add_argument('--surface', default='false', choices=['true', 'false'])
     parser.add_argument('--spacing', type=float)
     parser.add_argument('--wait', type=float, default=30.0)
+    parser.add_argument('--robot-description', default='',
+                        help='parameter holding a URDF to show with a RobotModel display')
+    parser.add_argument('--wrench', action='append', metavar='SOLID',
+                        help="show the node's ~wrench/SOLID (repeatable)")
     parser.add_argument('--config', default=os.path.join(
         os.path.dirname(os.path.realpath(__file__)), '..', 'config', 'pbf.rviz'))
     parser.add_argument('--output')
@@ -97,6 +133,7 @@ def main(argv):
     with open(args.config) as f:
         config = yaml.safe_load(f)
     fit_config(config, node, spacing, args.surface == 'true')
+    add_robot_and_wrenches(config, node, args.robot_description, args.wrench)
 
     output = args.output
     if output is None:

@@ -70,6 +70,18 @@ class RvizForNodeTest(unittest.TestCase):
             self.assertIs(d['Enabled'], True, cls)
             self.assertEqual(d['Image Topic'], '/fluid/rgb/image_rect_color')
 
+    def test_robot_and_wrench_displays_when_asked(self):
+        _, config = fitted('--node', 'fluid', '--spacing', '0.01')
+        self.assertEqual(displays(config, 'rviz/RobotModel') + displays(config, 'rviz/WrenchStamped'), [])
+        _, config = fitted('--node', 'fluid', '--spacing', '0.01', '--robot-description',
+                           'robot_description', '--wrench', 'cup', '--wrench', 'container',
+                           namespace='/lab')
+        robot = displays(config, 'rviz/RobotModel')
+        self.assertEqual(len(robot), 1)
+        self.assertEqual(robot[0]['Robot Description'], 'robot_description')
+        self.assertEqual([d['Topic'] for d in displays(config, 'rviz/WrenchStamped')],
+                         ['/lab/fluid/wrench/cup', '/lab/fluid/wrench/container'])
+
     def test_the_shipped_config_is_already_right_for_the_default_node(self):
         with open(os.path.join(ROOT, 'config', 'pbf.rviz')) as f:
             config = yaml.safe_load(f)

@@ -214,7 +214,7 @@ TEST(UrdfSolids, TheDemoArmLoadsWithEveryLinkAsASolid) {
   const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, options());
   EXPECT_EQ(s.problems.size(), 0u) << joined(s.problems);
   EXPECT_EQ(s.robot_name, "pouring_arm");
-  ASSERT_EQ(s.solids.size(), 5u);
+  ASSERT_EQ(s.solids.size(), 6u);  // base: disc and post; upper arm; forearm; cup: stem and cup
   for (const auto& solid : s.solids) {
     EXPECT_EQ(solid.obstacle.validate(), "") << solid.name;
     if (!solid.obstacle.sdf) continue;
@@ -227,12 +227,16 @@ TEST(UrdfSolids, TheDemoArmLoadsWithEveryLinkAsASolid) {
   }
   std::printf("all mesh grids: %zu bytes (cell %.4f m, band %.3f m)\n", s.sdfBytes(), options().sdf.cell,
               options().sdf.band);
-  const auto* cup = find(s, "cup");
+  const pbf_ros::UrdfSolid* cup = nullptr;  // the cup link's mesh (beside its stem)
+  for (const auto& solid : s.solids)
+    if (solid.link == "cup" && solid.obstacle.shape == pbf::Obstacle::Shape::Mesh) cup = &solid;
   ASSERT_TRUE(cup);
+  // The cup stands on a 3 cm stem: its mesh's origin is 3 cm up the link's z axis.
+  EXPECT_NEAR(cup->obstacle.pose.translation().z(), 0.03f, 1e-6f);
   Eigen::Vector3f n;  // water stands in the cup: its cavity is outside the solid
-  EXPECT_NEAR(cup->obstacle.signedDistance(Eigen::Vector3f(0.0f, 0.0f, 0.05f), n), 0.038f, 1e-3f);
+  EXPECT_NEAR(cup->obstacle.signedDistance(Eigen::Vector3f(0.0f, 0.0f, 0.08f), n), 0.038f, 1e-3f);
   // Mid-wall (1.2 cm thick) is its medial surface, where interpolation rounds the kink.
-  EXPECT_LT(cup->obstacle.signedDistance(Eigen::Vector3f(0.044f, 0.0f, 0.05f), n), -0.006f + 0.5f * 0.005f);
+  EXPECT_LT(cup->obstacle.signedDistance(Eigen::Vector3f(0.044f, 0.0f, 0.08f), n), -0.006f + 0.5f * 0.005f);
 }
 
 TEST(UrdfSolids, PackageUrisResolveThroughTheRosPackagePath) {
