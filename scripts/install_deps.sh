@@ -20,6 +20,7 @@ PACKAGES=(
   # depth-to-cloud example and its test run depth_image_proc's nodelets beside it (its
   # plugin description is in the -dev package, which brings OpenCV's headers along)
   libnodeletlib-dev libnodeletlib-tools pluginlib-dev libdepth-image-proc-dev
+  libinteractive-markers-dev
   # what Debian's rosdep maps package.xml's other keys to, so `rosdep check` stays quiet
   # (librviz-dev is Debian's package for the rviz key; the rviz package below runs rviz)
   librviz-dev python3-visualization-msgs python3-diagnostic-updater python3-tf2-geometry-msgs

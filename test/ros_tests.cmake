@@ -8,6 +8,7 @@ find_package(rostest REQUIRED)
 catkin_add_gtest(test_ros_units
   test/ros/test_camera_info_conversion.cpp
   test/ros/test_cloud_conversion.cpp
+  test/ros/test_obstacle_mover.cpp
   test/ros/test_params_conversion.cpp
   test/ros/test_real_time_pacer.cpp
   test/ros/test_render_camera_params.cpp
@@ -35,6 +36,7 @@ add_rostest(test/robot_solids.test DEPENDENCIES pbf_node)
 add_rostest(test/floating_bodies.test DEPENDENCIES pbf_node)
 add_rostest(test/sources_and_drains.test DEPENDENCIES pbf_node)
 add_rostest(test/robot_pouring.test DEPENDENCIES pbf_node)
+add_rostest(test/obstacle_mover.test DEPENDENCIES pbf_node)
 # The nodelet in a manager beside depth_image_proc's point_cloud_xyzrgb.
 add_rostest(test/fluid_nodelet.test DEPENDENCIES pbf_fluid_nodelet)
 

@@ -193,6 +193,13 @@ void FluidNode::advertise() {
   pause_srv_ = pnh_.advertiseService("pause", &FluidNode::onPauseService, this);
   step_srv_ = pnh_.advertiseService("step", &FluidNode::onStepService, this);
   emit_srv_ = pnh_.advertiseService("emit", &FluidNode::onEmitService, this);
+  // Runs its frame lookups on the simulation thread (in apply()), which owns attachments_.
+  mover_ = std::make_unique<ObstacleMover>(pnh_, domain_frame_,
+                                           [this](const std::string& frame, Eigen::Isometry3f& pose) {
+                                             if (!attachments_)
+                                               attachments_ = std::make_unique<TfAttachments>(domain_frame_);
+                                             return attachments_->currentPose(frame, pose);
+                                           });
 
   startDiagnostics();
   master_timer_ = nh_.createWallTimer(ros::WallDuration(1.0),

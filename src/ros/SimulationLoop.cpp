@@ -92,6 +92,8 @@ void FluidNode::stepOnce() {
   } catch (const std::exception& e) {  // a non-finite pose: keep the previous one
     ROS_WARN_THROTTLE(10.0, "pbf_node: ignoring an attached frame's pose: %s", e.what());
   }
+  // Obstacles a user drags (rviz, ~obstacle_pose/*) take their next bounded step.
+  markers_stale_ = mover_->apply(*solver_, scene_) || markers_stale_;
   // Wrenches are measured only while someone wants them (a ~wrench subscriber) or a body
   // floats on them.
   solver_->setWrenchTracking(wrench_pubs_->wanted());
@@ -132,6 +134,11 @@ void FluidNode::stepOnce() {
   }
   updateHealth();
   publishClock();
+  if (markers_stale_ && wall - last_markers_wall_ >= 0.1) {  // at most 10 Hz while moving
+    last_markers_wall_ = wall;
+    markers_stale_ = false;
+    markers_pub_.publish(makeSceneMarkers(scene_, domain_frame_, stamp()));
+  }
 }
 
 void FluidNode::publishDue(double wall, bool force) {
@@ -239,6 +246,10 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     robot_links_ = std::move(robot_links);
     floating_ = std::move(floating);
     wrench_pubs_->setTargets(wrenchTargets(scene_, robot_links_, domain_frame_));
+    std::vector<std::size_t> robot_obstacles;
+    for (const RobotLinkSolids& link : robot_links_)
+      robot_obstacles.insert(robot_obstacles.end(), link.obstacles.begin(), link.obstacles.end());
+    mover_->setScene(scene_, robot_obstacles);
   } catch (const std::exception& e) {
     return e.what();
   }

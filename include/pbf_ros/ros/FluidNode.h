@@ -42,6 +42,7 @@
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
 #include "pbf_ros/ros/FluidDiagnostics.h"
+#include "pbf_ros/ros/ObstacleMover.h"
 #include "pbf_ros/ros/RealTimePacer.h"
 #include "pbf_ros/ros/ReconfigureRecord.h"
 #include "pbf_ros/ros/RobotSource.h"
@@ -209,6 +210,9 @@ class FluidNode {
   std::unique_ptr<SolidWrenchPublishers> wrench_pubs_;  // ~wrench/<solid>
   pbf::FloatingBodies floating_;       // the scene's dynamic obstacles (moved after each step)
   pbf::FluidSources sources_;          // emitters, drains and ~emit, with their books
+  std::unique_ptr<ObstacleMover> mover_;  // rviz drags and ~obstacle_pose/* move free obstacles
+  bool markers_stale_ = false;         // a moved obstacle: ~markers to be sent again
+  double last_markers_wall_ = 0.0;
   std::unique_ptr<tf2_ros::TransformBroadcaster> floating_tf_;
   double last_floating_tf_wall_ = 0.0;
   std::atomic<bool> running_{false};
