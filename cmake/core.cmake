@@ -28,6 +28,8 @@ add_library(pbf_core
   src/core/SolidWrench.cpp
   src/core/RigidBody.cpp
   src/core/FloatingBodies.cpp
+  src/core/ParticleChanges.cpp
+  src/core/FluidSources.cpp
   src/core/SolverParams.cpp
   src/core/Scene.cpp
   src/core/Metrics.cpp

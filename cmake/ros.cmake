@@ -15,6 +15,7 @@ add_library(pbf_ros_node
   src/ros/FluidNodeReconfigure.cpp
   src/ros/FluidNodeRobot.cpp
   src/ros/FluidNodeServices.cpp
+  src/ros/FluidNodeSources.cpp
   src/ros/ParamsConversion.cpp
   src/ros/RealTimePacer.cpp
   src/ros/ReconfigureRecord.cpp

@@ -33,6 +33,7 @@ add_rostest(test/hostile_input.test DEPENDENCIES pbf_node)
 add_rostest(test/reset_moved_frame.test DEPENDENCIES pbf_node)
 add_rostest(test/robot_solids.test DEPENDENCIES pbf_node)
 add_rostest(test/floating_bodies.test DEPENDENCIES pbf_node)
+add_rostest(test/sources_and_drains.test DEPENDENCIES pbf_node)
 # The nodelet in a manager beside depth_image_proc's point_cloud_xyzrgb.
 add_rostest(test/fluid_nodelet.test DEPENDENCIES pbf_fluid_nodelet)
 

@@ -83,6 +83,7 @@ void PbfSolver::setParticles(const std::vector<Eigen::Vector3f>& positions,
                                  : velocities;
   id_.resize(n);
   for (std::size_t i = 0; i < n; ++i) id_[i] = static_cast<std::uint32_t>(i);
+  next_id_ = static_cast<std::uint32_t>(n);
   predicted_.assign(n, Eigen::Vector3f::Zero());
   delta_.assign(n, Eigen::Vector3f::Zero());
   new_velocity_.assign(n, Eigen::Vector3f::Zero());

@@ -281,6 +281,75 @@ FloatingBodySpec readFloating(const YAML::Node& n, const std::string& origin, co
   return f;
 }
 
+// `emitters:` entry: {position, direction, radius, speed | rate, volume, start, frame}.
+Emitter readEmitter(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsMap()) fail(origin, key, "a map with position, direction, radius and speed or rate");
+  checkKeys(n, {"position", "direction", "radius", "speed", "rate", "volume", "start", "frame"}, origin,
+            key + ".");
+  Emitter e;
+  e.position = readVec3(required(n, "position", origin, key + ".position"), origin, key + ".position");
+  e.direction = readVec3(required(n, "direction", origin, key + ".direction"), origin, key + ".direction");
+  e.radius = readFloat(required(n, "radius", origin, key + ".radius"), origin, key + ".radius");
+  if (n["speed"]) e.speed = readFloat(n["speed"], origin, key + ".speed");
+  if (n["rate"]) e.rate = readFloat(n["rate"], origin, key + ".rate");
+  if (n["volume"]) e.volume = readFloat(n["volume"], origin, key + ".volume");
+  if (n["start"]) e.start = readFloat(n["start"], origin, key + ".start");
+  if (n["frame"]) {
+    if (!n["frame"].IsScalar() || n["frame"].Scalar().empty()) fail(origin, key + ".frame", "a tf frame name");
+    e.frame = n["frame"].Scalar();
+  }
+  if (!(e.direction.norm() > 1e-6f)) fail(origin, key + ".direction", "a non-zero vector");
+  if (!(e.radius > 0.0f)) fail(origin, key + ".radius", "a number > 0 [m]");
+  if (n["speed"] && n["rate"]) fail(origin, key, "either 'speed' [m/s] or 'rate' [m^3/s], not both");
+  if (n["speed"] && !(e.speed > 0.0f)) fail(origin, key + ".speed", "a number > 0 [m/s]");
+  if (n["rate"] && !(e.rate > 0.0f)) fail(origin, key + ".rate", "a number > 0 [m^3/s]");
+  if (!n["speed"] && !n["rate"]) fail(origin, key, "'speed' [m/s] or 'rate' [m^3/s]");
+  if (n["volume"] && !(e.volume > 0.0f)) fail(origin, key + ".volume", "a number > 0 [m^3] (leave it out for no limit)");
+  if (e.start < 0.0f) fail(origin, key + ".start", "a time >= 0 [s]");
+  e.direction.normalize();
+  return e;
+}
+
+// `drains:` entry: {box: {min, max}} or {sphere: {center, radius}}.
+Drain readDrain(const YAML::Node& n, const std::string& origin, const std::string& key) {
+  if (!n.IsMap()) fail(origin, key, "a map with 'box' or 'sphere'");
+  checkKeys(n, {"box", "sphere"}, origin, key + ".");
+  if (!n["box"] == !n["sphere"]) fail(origin, key, "exactly one of 'box' or 'sphere'");
+  Drain d;
+  if (const YAML::Node box = n["box"]) {
+    if (!box.IsMap()) fail(origin, key + ".box", "a map with 'min' and 'max'");
+    checkKeys(box, {"min", "max"}, origin, key + ".box.");
+    d.shape = Drain::Shape::Box;
+    d.min = readVec3(required(box, "min", origin, key + ".box.min"), origin, key + ".box.min");
+    d.max = readVec3(required(box, "max", origin, key + ".box.max"), origin, key + ".box.max");
+    if (!(d.min.array() < d.max.array()).all()) fail(origin, key + ".box", "min < max on every axis");
+  } else {
+    const YAML::Node s = n["sphere"];
+    if (!s.IsMap()) fail(origin, key + ".sphere", "a map with 'center' and 'radius'");
+    checkKeys(s, {"center", "radius"}, origin, key + ".sphere.");
+    d.shape = Drain::Shape::Sphere;
+    d.center = readVec3(required(s, "center", origin, key + ".sphere.center"), origin, key + ".sphere.center");
+    d.radius = readFloat(required(s, "radius", origin, key + ".sphere.radius"), origin, key + ".sphere.radius");
+    if (!(d.radius > 0.0f)) fail(origin, key + ".sphere.radius", "a number > 0 [m]");
+  }
+  return d;
+}
+
+// A list under `name` of at most `limit` entries, each read by `read`.
+template <typename T, typename Read>
+std::vector<T> readList(const YAML::Node& root, const char* name, std::size_t limit,
+                        const std::string& origin, Read read) {
+  std::vector<T> out;
+  const YAML::Node list = root[name];
+  if (!list) return out;
+  if (!list.IsSequence()) fail(origin, name, "a list");
+  if (list.size() > limit)
+    fail(origin, name, "at most " + std::to_string(limit) + " entries (got " + std::to_string(list.size()) + ")");
+  for (std::size_t i = 0; i < list.size(); ++i)
+    out.push_back(read(list[i], origin, std::string(name) + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
 bool blockContains(const FluidBlock& b, const Eigen::Vector3f& p) {
   if (b.shape == FluidBlock::Shape::Box)
     return (p.array() >= b.min.array()).all() && (p.array() < b.max.array()).all();
@@ -323,7 +392,7 @@ Scene parseScene(const std::string& text, const std::string& origin) {
   }
   if (!root.IsMap()) throw SceneError(origin + ": expected a map at the top level");
   checkKeys(root, {"name", "description", "container", "container_frame", "domain_pose", "fluid",
-                   "obstacles", "solver"},
+                   "obstacles", "emitters", "drains", "solver"},
             origin, "");
   Scene s;
   s.source = origin;
@@ -363,6 +432,8 @@ Scene parseScene(const std::string& text, const std::string& origin) {
         s.floating.push_back(readFloating(dynamic, origin, key + ".dynamic", i, s.obstacles.back()));
     }
   }
+  s.emitters = readList<Emitter>(root, "emitters", kMaxSceneEmitters, origin, readEmitter);
+  s.drains = readList<Drain>(root, "drains", kMaxSceneDrains, origin, readDrain);
   if (const YAML::Node cf = root["container_frame"]) {
     if (!cf.IsScalar() || cf.Scalar().empty()) fail(origin, "container_frame", "a tf frame name");
     s.container_frame = cf.Scalar();
@@ -453,6 +524,13 @@ std::string Scene::validate() const {
   if (cells > 5.0e8) {
     err << "container / particle_spacing gives " << cells << " lattice cells; expected at most 5e8";
     return err.str();
+  }
+  for (std::size_t i = 0; i < emitters.size(); ++i) {
+    // A fixed nozzle outside the container could never emit anything: say so now.
+    if (emitters[i].frame.empty() && !container.contains(emitters[i].position)) {
+      err << "emitters[" << i << "].position is outside the container";
+      return err.str();
+    }
   }
   for (std::size_t i = 0; i < fluid.size(); ++i) {
     const FluidBlock& b = fluid[i];

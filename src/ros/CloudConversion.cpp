@@ -15,18 +15,20 @@ bool finite3(const Eigen::Vector3f& v) {
 std::size_t fillParticleCloud(const std::vector<Eigen::Vector3f>& positions,
                               const std::vector<Eigen::Vector3f>& velocities,
                               const std::vector<float>& densities,
+                              const std::vector<std::uint32_t>& ids,
                               sensor_msgs::PointCloud2& cloud) {
   const std::size_t n = positions.size();
   const bool have_velocities = velocities.size() == n;
   const bool have_densities = densities.size() == n;
+  const bool have_ids = ids.size() == n;
 
   sensor_msgs::PointCloud2Modifier modifier(cloud);
   modifier.setPointCloud2Fields(
-      kCloudFieldCount, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
+      kCloudFieldCount + 1, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
       sensor_msgs::PointField::FLOAT32, "z", 1, sensor_msgs::PointField::FLOAT32, "vx", 1,
       sensor_msgs::PointField::FLOAT32, "vy", 1, sensor_msgs::PointField::FLOAT32, "vz", 1,
       sensor_msgs::PointField::FLOAT32, "density", 1, sensor_msgs::PointField::FLOAT32, "speed",
-      1, sensor_msgs::PointField::FLOAT32);
+      1, sensor_msgs::PointField::FLOAT32, "id", 1, sensor_msgs::PointField::UINT32);
   cloud.is_bigendian = false;  // x86 and ARM hosts are little endian; memcpy keeps host order
   cloud.data.resize(n * cloud.point_step);
 
@@ -47,7 +49,9 @@ std::size_t fillParticleCloud(const std::vector<Eigen::Vector3f>& positions,
     if (!finite3(positions[i]) || !finite3(v) || !std::isfinite(point[6]) ||
         !std::isfinite(point[7]))
       continue;
+    const std::uint32_t id = have_ids ? ids[i] : static_cast<std::uint32_t>(i);
     std::memcpy(out + written * cloud.point_step, point, sizeof(point));
+    std::memcpy(out + written * cloud.point_step + sizeof(point), &id, sizeof(id));
     ++written;
   }
   cloud.data.resize(written * cloud.point_step);

@@ -192,6 +192,7 @@ void FluidNode::advertise() {
   reset_srv_ = pnh_.advertiseService("reset", &FluidNode::onResetService, this);
   pause_srv_ = pnh_.advertiseService("pause", &FluidNode::onPauseService, this);
   step_srv_ = pnh_.advertiseService("step", &FluidNode::onStepService, this);
+  emit_srv_ = pnh_.advertiseService("emit", &FluidNode::onEmitService, this);
 
   startDiagnostics();
   master_timer_ = nh_.createWallTimer(ros::WallDuration(1.0),

@@ -102,6 +102,7 @@ void FluidNode::stepOnce() {
     wrench_pubs_->accumulate(scene_, *solver_, last_stats_.dt);  // at the poses of the step
     floating_.afterStep(*solver_, last_stats_.dt);               // poses for the next one
     publishFloatingPoses();
+    applySources(last_stats_.dt);  // the particle count may change here, between steps
   }
   if (!solver_->wrenchTracking()) last_stats_.skipped_stages.push_back("wrench");
   sim_clock_ += solver_->time() - time_before;
@@ -168,7 +169,7 @@ void FluidNode::publishCloud(bool force) {
   cloud_->header.stamp = stamp();
   cloud_->header.frame_id = domain_frame_;
   const std::size_t dropped = fillParticleCloud(solver_->positions(), solver_->velocities(),
-                                                solver_->densities(), *cloud_);
+                                                solver_->densities(), solver_->ids(), *cloud_);
   if (dropped > 0) {
     ROS_ERROR_THROTTLE(5.0, "pbf_node: %zu particles with non-finite values left out of ~particles",
                        dropped);
@@ -195,6 +196,10 @@ void FluidNode::publishStats() {
   context.render_ms = surface_status_.last_frame_ms.load();
   context.render_frames = surface_status_.frames.load();
   context.wrench_tracked = wrench_pubs_->takeTotal(context.solids_wrench);
+  context.initial_particle_count = static_cast<std::uint32_t>(sources_.initialParticles());
+  context.particles_emitted = sources_.emitted();
+  context.particles_drained = sources_.drained();
+  context.particle_mass = solver_->params().particleMass();
   stats_pub_.publish(boost::make_shared<const SimulationStats>(toStatsMessage(last_stats_, context)));
   stats_rate_.tick();
 }
@@ -225,7 +230,9 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     pbf::setUpSolver(next, *fresh);  // parameters, container, obstacles, particles
     seedAtCurrentPoses(next, *fresh);
     pbf::FloatingBodies floating = pbf::makeFloatingBodies(next);
+    pbf::FluidSources sources(next.emitters, next.drains, fresh->size());
     solver_ = std::move(fresh);
+    sources_ = std::move(sources);
     scene_ = next;
     scene_without_robot_ = scene;
     scene_without_robot_.solver = params;

@@ -41,6 +41,11 @@ SimulationStats toStatsMessage(const pbf::StepStats& stats, const StatsContext& 
     msg.solids_wrench.torque.y = context.solids_wrench.torque.y();
     msg.solids_wrench.torque.z = context.solids_wrench.torque.z();
   }
+  msg.initial_particle_count = context.initial_particle_count;
+  msg.particles_emitted = context.particles_emitted;
+  msg.particles_drained = context.particles_drained;
+  msg.particle_mass = finiteOr0(context.particle_mass);
+  msg.fluid_mass = finiteOr0(context.particle_mass * context.particle_count);
   msg.skipped_stages = stats.skipped_stages;
   if (context.cloud_skipped) msg.skipped_stages.push_back("cloud");
   if (context.render_skipped) msg.skipped_stages.push_back("surface");

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "pbf_ros/core/FloatingBodies.h"
+#include "pbf_ros/core/FluidSources.h"
 #include "pbf_ros/core/Metrics.h"
 #include "pbf_ros/core/NeighborGrid.h"
 #include "pbf_ros/core/PbfSolver.h"
@@ -69,6 +70,8 @@ int main(int argc, char** argv) {
     pbf::PbfSolver solver;
     pbf::setUpSolver(scene, solver);
     pbf::FloatingBodies floating = pbf::makeFloatingBodies(scene);
+    // Emitters at their scene poses (no tf here), drains; no particle limit beyond memory's.
+    pbf::FluidSources sources(scene.emitters, scene.drains, solver.size());
     solver.setWrenchTracking(track_wrenches);
     std::printf("pbf_run: scene '%s' (%s), %zu particles, spacing %.4f m, simulating %.2f s\n",
                 scene.name.c_str(), scene.source.c_str(), solver.size(),
@@ -81,7 +84,10 @@ int main(int argc, char** argv) {
     while (solver.time() < seconds - 1e-9) {
       floating.prepare(solver);
       const pbf::StepStats st = solver.step();
-      if (!st.failed) floating.afterStep(solver, st.dt);
+      if (!st.failed) {
+        floating.afterStep(solver, st.dt);
+        sources.afterStep(solver, st.dt, std::size_t(-1));
+      }
       step_ms += st.times.total_ms;
       ++steps_since;
       nan_retries += st.nan_retries;
@@ -121,6 +127,10 @@ int main(int argc, char** argv) {
                 "%d NaN retries\n",
                 solver.time(), wall, solver.time() / wall,
                 static_cast<unsigned long long>(solver.stepCount()), nan_retries);
+    if (!scene.emitters.empty() || !scene.drains.empty())
+      std::printf("pbf_run: %zu particles = %zu at start + %llu emitted - %llu drained\n", solver.size(),
+                  sources.initialParticles(), static_cast<unsigned long long>(sources.emitted()),
+                  static_cast<unsigned long long>(sources.drained()));
     for (const auto& [index, body] : floating.bodies()) {
       const Eigen::Vector3f p = body.shape().pose.translation();
       std::printf("pbf_run: floating obstacle %zu ('%s') at (%.4f, %.4f, %.4f) m, speed %.4f m/s\n",

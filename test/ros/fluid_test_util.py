@@ -84,8 +84,14 @@ def cloud_listener():
 def cloud_points(cloud):
     """List of (x, y, z, vx, vy, vz, density, speed) tuples of a pbf_node cloud."""
     n = cloud.width * cloud.height
-    fmt = '<' + 'f' * (cloud.point_step // 4)
-    return [struct.unpack_from(fmt, cloud.data, i * cloud.point_step) for i in range(n)]
+    return [struct.unpack_from('<8f', cloud.data, i * cloud.point_step) for i in range(n)]
+
+
+def cloud_ids(cloud):
+    """The particle ids (uint32 field 'id') of a pbf_node cloud, in point order."""
+    offset = next(f.offset for f in cloud.fields if f.name == 'id')
+    n = cloud.width * cloud.height
+    return [struct.unpack_from('<I', cloud.data, i * cloud.point_step + offset)[0] for i in range(n)]
 
 
 def mean(values):

@@ -12,16 +12,17 @@ using pbf_ros::fillParticleCloud;
 
 TEST(CloudConversion, FieldsAreFloat32InDocumentedOrder) {
   sensor_msgs::PointCloud2 cloud;
-  fillParticleCloud({Eigen::Vector3f(1, 2, 3)}, {Eigen::Vector3f(4, 5, 6)}, {998.0f}, cloud);
-  const char* names[] = {"x", "y", "z", "vx", "vy", "vz", "density", "speed"};
-  ASSERT_EQ(cloud.fields.size(), 8u);
+  fillParticleCloud({Eigen::Vector3f(1, 2, 3)}, {Eigen::Vector3f(4, 5, 6)}, {998.0f}, {}, cloud);
+  const char* names[] = {"x", "y", "z", "vx", "vy", "vz", "density", "speed", "id"};
+  ASSERT_EQ(cloud.fields.size(), 9u);
   for (std::size_t i = 0; i < cloud.fields.size(); ++i) {
     EXPECT_EQ(cloud.fields[i].name, names[i]);
-    EXPECT_EQ(cloud.fields[i].datatype, sensor_msgs::PointField::FLOAT32);
+    EXPECT_EQ(cloud.fields[i].datatype,
+              i < 8 ? sensor_msgs::PointField::FLOAT32 : sensor_msgs::PointField::UINT32);
     EXPECT_EQ(cloud.fields[i].count, 1u);
     EXPECT_EQ(cloud.fields[i].offset, 4 * i);
   }
-  EXPECT_EQ(cloud.point_step, 32u);
+  EXPECT_EQ(cloud.point_step, 36u);
 }
 
 TEST(CloudConversion, SizeAndValuesMatchTheParticles) {
@@ -33,7 +34,7 @@ TEST(CloudConversion, SizeAndValuesMatchTheParticles) {
     rho.push_back(1000.0f + i);
   }
   sensor_msgs::PointCloud2 cloud;
-  EXPECT_EQ(fillParticleCloud(p, v, rho, cloud), 0u);
+  EXPECT_EQ(fillParticleCloud(p, v, rho, {}, cloud), 0u);
   EXPECT_EQ(cloud.width * cloud.height, 100u);
   EXPECT_EQ(cloud.data.size(), 100u * cloud.point_step);
   EXPECT_EQ(cloud.row_step, cloud.width * cloud.point_step);
@@ -52,7 +53,7 @@ TEST(CloudConversion, SizeAndValuesMatchTheParticles) {
 
 TEST(CloudConversion, MissingDensitiesAndVelocitiesAreZero) {
   sensor_msgs::PointCloud2 cloud;
-  fillParticleCloud({Eigen::Vector3f(1, 2, 3), Eigen::Vector3f(4, 5, 6)}, {}, {}, cloud);
+  fillParticleCloud({Eigen::Vector3f(1, 2, 3), Eigen::Vector3f(4, 5, 6)}, {}, {}, {}, cloud);
   ASSERT_EQ(cloud.width, 2u);
   sensor_msgs::PointCloud2ConstIterator<float> vx(cloud, "vx"), density(cloud, "density");
   EXPECT_EQ(*vx, 0.0f);
@@ -68,7 +69,7 @@ TEST(CloudConversion, NonFiniteParticlesAreLeftOut) {
                                     Eigen::Vector3f(0, inf, 0), Eigen::Vector3f::Zero()};
   std::vector<float> rho = {1000.0f, 1000.0f, 1000.0f, nan};
   sensor_msgs::PointCloud2 cloud;
-  EXPECT_EQ(fillParticleCloud(p, v, rho, cloud), 3u);
+  EXPECT_EQ(fillParticleCloud(p, v, rho, {}, cloud), 3u);
   EXPECT_EQ(cloud.width, 1u);
   EXPECT_EQ(cloud.data.size(), cloud.point_step);
   for (std::size_t i = 0; i < cloud.data.size(); i += 4) {
@@ -80,9 +81,25 @@ TEST(CloudConversion, NonFiniteParticlesAreLeftOut) {
 
 TEST(CloudConversion, ReusedMessageShrinks) {
   sensor_msgs::PointCloud2 cloud;
-  fillParticleCloud(std::vector<Eigen::Vector3f>(50, Eigen::Vector3f::Zero()), {}, {}, cloud);
-  fillParticleCloud(std::vector<Eigen::Vector3f>(3, Eigen::Vector3f::Zero()), {}, {}, cloud);
+  fillParticleCloud(std::vector<Eigen::Vector3f>(50, Eigen::Vector3f::Zero()), {}, {}, {}, cloud);
+  fillParticleCloud(std::vector<Eigen::Vector3f>(3, Eigen::Vector3f::Zero()), {}, {}, {}, cloud);
   EXPECT_EQ(cloud.width, 3u);
   EXPECT_EQ(cloud.data.size(), 3u * cloud.point_step);
-  EXPECT_EQ(cloud.fields.size(), 8u);
+  EXPECT_EQ(cloud.fields.size(), 9u);
+}
+
+TEST(CloudConversion, IdsFollowTheirParticles) {
+  sensor_msgs::PointCloud2 cloud;
+  const std::vector<Eigen::Vector3f> p = {Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(1, 0, 0),
+                                          Eigen::Vector3f(NAN, 0, 0), Eigen::Vector3f(3, 0, 0)};
+  fillParticleCloud(p, {}, {}, {7u, 4000000000u, 9u, 12u}, cloud);
+  ASSERT_EQ(cloud.width, 3u);  // the non-finite one (id 9) is left out, with its id
+  sensor_msgs::PointCloud2ConstIterator<std::uint32_t> id(cloud, "id");
+  sensor_msgs::PointCloud2ConstIterator<float> x(cloud, "x");
+  const std::uint32_t expected_id[] = {7u, 4000000000u, 12u};
+  const float expected_x[] = {0.0f, 1.0f, 3.0f};
+  for (int i = 0; i < 3; ++i, ++id, ++x) {
+    EXPECT_EQ(*id, expected_id[i]);
+    EXPECT_EQ(*x, expected_x[i]);
+  }
 }

@@ -12,7 +12,8 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from sensor_msgs.msg import PointField
 from tf2_msgs.msg import TFMessage
 
-from fluid_test_util import NODE, SIMULATION, Latest, cloud_listener, cloud_points, stats_listener
+from fluid_test_util import (NODE, SIMULATION, Latest, cloud_ids, cloud_listener, cloud_points,
+                             stats_listener)
 
 PUBLISH_RATE = 10.0  # node_interface.test's ~publish_rate
 EXPECTED_TYPES = {
@@ -52,10 +53,11 @@ class NodeInterfaceTest(unittest.TestCase):
         try:
             cloud = cloud_sub.next(timeout=20.0)
             self.assertEqual(cloud.header.frame_id, 'fluid_domain')
-            self.assertEqual([f.name for f in cloud.fields][:7],
-                             ['x', 'y', 'z', 'vx', 'vy', 'vz', 'density'])
+            self.assertEqual([f.name for f in cloud.fields],
+                             ['x', 'y', 'z', 'vx', 'vy', 'vz', 'density', 'speed', 'id'])
             for f in cloud.fields:
-                self.assertEqual(f.datatype, PointField.FLOAT32, f.name)
+                self.assertEqual(f.datatype, PointField.UINT32 if f.name == 'id' else PointField.FLOAT32,
+                                 f.name)
             # Once someone listens, the stats show the cloud being built.
             m = stats.next(timeout=10.0, condition=lambda m: 'cloud' not in m.skipped_stages)
             self.assertGreater(m.time_cloud_ms, 0.0)
@@ -63,6 +65,8 @@ class NodeInterfaceTest(unittest.TestCase):
             self.assertGreater(m.particle_count, 100)
             points = cloud_points(cloud)
             self.assertTrue(all(math.isfinite(v) for p in points for v in p))
+            # Every particle has its own id (a fixed fluid: ids 0 .. n-1, in any order).
+            self.assertEqual(sorted(cloud_ids(cloud)), list(range(m.particle_count)))
         finally:
             cloud_sub.close()
             stats.close()

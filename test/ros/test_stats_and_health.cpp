@@ -42,6 +42,22 @@ TEST(StatsConversion, CopiesTheStepAndAddsTheNodeContext) {
   EXPECT_EQ(m.skipped_stages, std::vector<std::string>{"vorticity"});
 }
 
+TEST(StatsConversion, SourcesAndDrainsBalanceInTheMessage) {
+  pbf_ros::StatsContext c;
+  c.particle_count = 1040;
+  c.initial_particle_count = 1000;
+  c.particles_emitted = 90;
+  c.particles_drained = 50;
+  c.particle_mass = 0.008;
+  const pbf_ros::SimulationStats m = pbf_ros::toStatsMessage(pbf::StepStats(), c);
+  EXPECT_EQ(m.initial_particle_count, 1000u);
+  EXPECT_EQ(m.particles_emitted, 90u);
+  EXPECT_EQ(m.particles_drained, 50u);
+  EXPECT_EQ(m.particle_count, m.initial_particle_count + m.particles_emitted - m.particles_drained);
+  EXPECT_DOUBLE_EQ(m.particle_mass, 0.008);
+  EXPECT_DOUBLE_EQ(m.fluid_mass, 1040 * 0.008);
+}
+
 TEST(StatsConversion, SkippedCloudIsListedAndCostsNothing) {
   pbf_ros::StatsContext c;
   c.cloud_ms = 5.0;

@@ -55,6 +55,19 @@ class PbfSolver {
   void setParticles(const std::vector<Eigen::Vector3f>& positions,
                     const std::vector<Eigen::Vector3f>& velocities = {});
 
+  // Between steps, the amount of fluid may change (ParticleChanges.cpp: sources, drains,
+  // ~emit) without rebuilding anything else. Added particles get fresh ids (ids() of those
+  // that remain never change; an id is never given twice until setParticles() starts anew)
+  // and the solver's rest density and mass. Non-finite input or a size mismatch throws
+  // std::invalid_argument and changes nothing. Returns the id of the first one added.
+  std::uint32_t addParticles(const std::vector<Eigen::Vector3f>& positions,
+                             const std::vector<Eigen::Vector3f>& velocities);
+  // Removes the particles whose slot is flagged (remove.size() must equal size()); the
+  // others keep their ids and their order. Returns how many were removed.
+  std::size_t removeParticles(const std::vector<std::uint8_t>& remove);
+  // The id the next added particle will get.
+  std::uint32_t nextId() const { return next_id_; }
+
   // One step with the time step the parameters ask for (fixed or CFL). Never leaves
   // non-finite values in the state: a failed attempt is retried with half the dt.
   StepStats step();
@@ -124,6 +137,7 @@ class PbfSolver {
   std::vector<Eigen::Vector3f> position_;    // x, at the start/end of a step
   std::vector<Eigen::Vector3f> velocity_;
   std::vector<std::uint32_t> id_;
+  std::uint32_t next_id_ = 0;                // fresh ids for added particles
   // Per-step scratch, Jacobi style: each pass reads one array and writes another.
   std::vector<Eigen::Vector3f> predicted_;   // x*
   std::vector<Eigen::Vector3f> delta_;       // delta p

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "pbf_ros/core/Drain.h"
+#include "pbf_ros/core/Emitter.h"
 #include "pbf_ros/core/Obstacle.h"
 #include "pbf_ros/core/SolverParams.h"
 
@@ -42,6 +44,8 @@ struct FluidBlock {
 constexpr std::size_t kMaxSceneFileBytes = 1 << 20;  // 1 MiB (the shipped scenes: < 2 kB)
 constexpr std::size_t kMaxFluidBlocks = 1000;
 constexpr std::size_t kMaxObstacles = 256;
+constexpr std::size_t kMaxSceneEmitters = 64;
+constexpr std::size_t kMaxSceneDrains = 64;
 
 // An obstacle the fluid moves (RigidBody.h, FloatingBodies.h). Its obstacle's `frame` is the
 // tf frame the node publishes the body's pose on (offset identity), `pose` where it starts.
@@ -58,6 +62,8 @@ struct Scene {
   std::vector<FluidBlock> fluid;
   std::vector<Obstacle> obstacles;      // poses in fluid_domain (or offsets in their frame)
   std::vector<FloatingBodySpec> floating;  // obstacles marked `dynamic`
+  std::vector<Emitter> emitters;        // nozzles that add fluid while it runs (FluidSources.h)
+  std::vector<Drain> drains;            // regions that remove the fluid entering them
   // tf frame the container is attached to ("" = fixed in fluid_domain): the node moves
   // the container with it (sloshing, carrying).
   std::string container_frame;

@@ -34,9 +34,11 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <pbf_ros/Emit.h>
 #include <pbf_ros/FluidConfig.h>
 
 #include "pbf_ros/core/FloatingBodies.h"
+#include "pbf_ros/core/FluidSources.h"
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
 #include "pbf_ros/ros/FluidDiagnostics.h"
@@ -106,6 +108,8 @@ class FluidNode {
   bool onResetService(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onPauseService(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool onStepService(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  // ~emit (FluidNodeSources.cpp): a block or sphere of fluid added between steps.
+  bool onEmitService(Emit::Request& req, Emit::Response& res);
   // Runs `task` on the simulation thread and waits; "" = success, else the error.
   std::string runOnSimulation(std::function<std::string()> task);
 
@@ -125,6 +129,8 @@ class FluidNode {
   // Reads the URDF now and appends the links' solids (at their tf poses) to scene.obstacles.
   std::vector<RobotLinkSolids> addRobotSolids(pbf::Scene& scene);
   void publishFloatingPoses();  // tf of the scene's floating bodies
+  // --- sources and drains (FluidNodeSources.cpp); simulation thread ---
+  void applySources(double dt);  // after a step: drains, then emitters (at their tf poses)
   void anchorStamps();   // stamps continue from the ROS time now (start, resume, rebuild)
   void setRates(double publish_rate, double stats_rate);
   void updateHealth();
@@ -152,7 +158,7 @@ class FluidNode {
 
   // ROS interface.
   ros::Publisher particles_pub_, stats_pub_, markers_pub_, clock_pub_;
-  ros::ServiceServer reset_srv_, pause_srv_, step_srv_;
+  ros::ServiceServer reset_srv_, pause_srv_, step_srv_, emit_srv_;
   std::mutex tf_static_mutex_;          // guards tf_static_ (sim thread, render settings)
   tf2_ros::StaticTransformBroadcaster tf_static_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
@@ -202,6 +208,7 @@ class FluidNode {
   std::unique_ptr<TfAttachments> attachments_;  // moves solids attached to tf frames
   std::unique_ptr<SolidWrenchPublishers> wrench_pubs_;  // ~wrench/<solid>
   pbf::FloatingBodies floating_;       // the scene's dynamic obstacles (moved after each step)
+  pbf::FluidSources sources_;          // emitters, drains and ~emit, with their books
   std::unique_ptr<tf2_ros::TransformBroadcaster> floating_tf_;
   double last_floating_tf_wall_ = 0.0;
   std::atomic<bool> running_{false};

@@ -29,6 +29,10 @@ struct StatsContext {
   std::uint64_t render_frames = 0;  // surface frames since the node started
   bool wrench_tracked = false;      // solids_wrench was measured (someone wants wrenches)
   pbf::Wrench solids_wrench;        // fluid on all solids, fluid_domain, about its origin
+  std::uint32_t initial_particle_count = 0;  // at the last reset
+  std::uint64_t particles_emitted = 0;       // since the last reset (emitters, ~emit)
+  std::uint64_t particles_drained = 0;       // since the last reset
+  double particle_mass = 0.0;                // [kg]
 };
 
 // Non-finite numbers become 0 (NaN never reaches a publisher; nan_recoveries tells).
