@@ -58,15 +58,15 @@ void PbfSolver::computeLambdas(float& avg_error) {
   const std::uint32_t* off = grid_->offsets().data();
   const std::uint32_t* nbr = grid_->indices().data();
   const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
-  const float mass = params_.particleMass();
+  const float mass = params_.densityMass();
   const float inv_rho0 = 1.0f / params_.rest_density;
   const float grad_scale = mass * inv_rho0;  // grad C = (m / rho0) grad W (eq 7 with mass)
-  const float self_density = mass * k.poly6(0.0f);
+  const float self_density = mass * k.spiky(0.0f);
   const bool unilateral = params_.unilateral_constraint;
   const float eps = params_.cfmEpsilon();
   const NeighborArrays arrays{P, off, nbr};
-  const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, grad_scale * k.spiky_grad_coef,
-                         kCoincident * k.h2};
+  const PairConstants pc{k.h, k.h2, 0.0f, mass * k.spiky_coef,
+                         grad_scale * k.spiky_grad_coef, kCoincident * k.h2};
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
   // The delta-p pass of this iteration sees the same positions: it reuses each pair's
@@ -147,7 +147,7 @@ void PbfSolver::computeScorrScales(const Scorr& scorr) {
   const std::uint32_t* nbr = grid_->indices().data();
   const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
   const float* G = pair_gradient_.data();
-  const float grad_scale = params_.particleMass() / params_.rest_density;
+  const float grad_scale = params_.densityMass() / params_.rest_density;
   const float tiny2 = kCoincident * scorr.h2;
   scorr_scale_.resize(n);
 #pragma omp parallel for schedule(static)
@@ -187,7 +187,7 @@ void PbfSolver::computeDeltas() {
   const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
   const float* L = lambda_.data();
   const float* G = pair_gradient_.data();  // (m / rho0) grad W / r, from the lambda pass
-  const float grad_scale = params_.particleMass() / params_.rest_density;
+  const float grad_scale = params_.densityMass() / params_.rest_density;
   const float tiny2 = kCoincident * k.h2;
   // With k = 0 the loop without s_corr runs: no cost.
   const Scorr scorr(params_, k, current_dt_);

@@ -16,20 +16,22 @@ namespace {
 // function that varies on the scale of d stays within ~0.1 % of rho0.
 constexpr int kNodesPerSpacing = 8;
 
-// Poly6 in units of d: W(r) = c (H^2 - r^2)^3, H = h/d, and its derivative factor.
-struct UnitPoly6 {
-  explicit UnitPoly6(double factor)
-      : H2(factor * factor), c(315.0 / (64.0 * M_PI * std::pow(factor, 9.0))) {}
+// The density kernel (Spiky, Kernels.h) in units of d: W(r) = c (H - r)^3, H = h/d, and
+// its derivative factor.
+struct UnitSpiky {
+  explicit UnitSpiky(double factor) : H(factor), c(15.0 / (M_PI * std::pow(factor, 6.0))) {}
   double value(double r2) const {
-    const double u = H2 - r2;
+    const double u = H - std::sqrt(r2);
     return u > 0.0 ? c * u * u * u : 0.0;
   }
-  // dW/dx = -6 c x (H^2 - r^2)^2: returns -6 c (H^2 - r^2)^2, to be multiplied by x.
+  // dW/dx = -3 c (H - r)^2 x / r: returns -3 c (H - r)^2 / r, to be multiplied by x. Zero
+  // at r = 0, where the cusp has no direction (as for coincident particles).
   double gradientFactor(double r2) const {
-    const double u = H2 - r2;
-    return u > 0.0 ? -6.0 * c * u * u : 0.0;
+    const double r = std::sqrt(r2);
+    const double u = H - r;
+    return u > 0.0 && r > 0.0 ? -3.0 * c * u * u / r : 0.0;
   }
-  double H2, c;
+  double H, c;
 };
 
 // Lattice offsets along one axis that lie beyond a plane at distance a (units of d):
@@ -63,7 +65,7 @@ std::array<double, A + B - 1> multiply(const std::array<double, A>& a, const std
 
 // The table only depends on h/d: build it once per factor and share it.
 std::vector<Eigen::Vector4f> buildTable(double factor, double full_line, double step, int nodes) {
-  const UnitPoly6 w(factor);
+  const UnitSpiky w(factor);
   const double norm = 1.0 / latticeKernelSum(factor);
   std::vector<std::vector<double>> offsets(nodes);
   for (int i = 0; i < nodes; ++i) offsets[i] = ghostOffsets(full_line + i * step, factor);
@@ -92,7 +94,7 @@ std::vector<Eigen::Vector4f> buildTable(double factor, double full_line, double 
 }  // namespace
 
 double latticeKernelSum(double support_radius_factor) {
-  const UnitPoly6 w(support_radius_factor);
+  const UnitSpiky w(support_radius_factor);
   const int n = static_cast<int>(std::ceil(support_radius_factor));
   double sum = 0.0;
   for (int z = -n; z <= n; ++z)
@@ -102,7 +104,7 @@ double latticeKernelSum(double support_radius_factor) {
 }
 
 double latticeGradientScale(double support_radius_factor) {
-  // Spiky gradient magnitude in units of d: 45 / (pi H^6) (H - r)^2, times m/rho0.
+  // Gradient magnitude of the density kernel in units of d: 45 / (pi H^6) (H - r)^2, times m/rho0.
   const double H = support_radius_factor;
   const double coef = 45.0 / (M_PI * std::pow(H, 6.0)) / latticeKernelSum(H);
   const int n = static_cast<int>(std::ceil(H));
@@ -182,28 +184,28 @@ float LatticeBoundary::halfSpace(float s, float& d_ds) const {
   return value;
 }
 
+// The Spiky kernel as a polynomial in r, and its coefficient, for support h.
+std::array<double, 4> spikyPolynomial(double h) { return {h * h * h, -3 * h * h, 3 * h, -1}; }
+double spikyCoefficient(double h) { return 15.0 / (M_PI * std::pow(h, 6.0)); }
+
 double continuumHalfSpaceFraction(double s, double h) {
   if (s >= h) return 0.0;
-  // (pi c / 4) int_s^h (h^2 - z^2)^4 dz, c = 315 / (64 pi h^9).
-  const double h2 = h * h;
-  const std::array<double, 9> p = {h2 * h2 * h2 * h2, 0, -4 * h2 * h2 * h2, 0, 6 * h2 * h2, 0,
-                                  -4 * h2, 0, 1};
-  return 315.0 / (256.0 * std::pow(h, 9.0)) * integratePolynomial(p, std::max(s, -h), h);
+  if (s < 0.0) return 1.0 - continuumHalfSpaceFraction(-s, h);
+  // Shells of radius r > s: the part beyond the plane is a cap of area 2 pi r (r - s).
+  const std::array<double, 3> cap = {0, -s, 1};
+  return 2.0 * M_PI * spikyCoefficient(h) * integratePolynomial(multiply(spikyPolynomial(h), cap), s, h);
 }
 
 double continuumBallFraction(double s, double radius, double h) {
   if (s >= h) return 0.0;
   // Shells of radius r around the particle: the part of each shell inside the ball is a
   // spherical cap of area 2 pi r^2 (1 - cos alpha), cos alpha = (D^2 + r^2 - R^2) / (2 D r),
-  // D = R + s. With W = c (h^2 - r^2)^3 the integrand is a polynomial in r.
+  // D = R + s. With W = c (h - r)^3 the integrand is a polynomial in r.
   const double D = radius + s, R = radius;
   const double hi = std::min(h, D + R), lo = std::max(s, 0.0);
   if (hi <= lo) return 0.0;
-  const double h2 = h * h;
-  const std::array<double, 7> kernel = {h2 * h2 * h2, 0, -3 * h2 * h2, 0, 3 * h2, 0, -1};
   const std::array<double, 4> cap = {0, -(D * D - R * R) / (2 * D), 1, -1 / (2 * D)};
-  const double c = 315.0 / (64.0 * M_PI * std::pow(h, 9.0));
-  return 2.0 * M_PI * c * integratePolynomial(multiply(kernel, cap), lo, hi);
+  return 2.0 * M_PI * spikyCoefficient(h) * integratePolynomial(multiply(spikyPolynomial(h), cap), lo, hi);
 }
 
 }  // namespace pbf

@@ -29,7 +29,7 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-  const float h = k.h, h2 = k.h2, poly6 = k.poly6, spiky = k.spiky, tiny2 = k.coincident2;
+  const float h = k.h, h2 = k.h2, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
 #pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
@@ -37,10 +37,9 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
     const std::uint32_t j = nbr[e];
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const float w = std::max(h2 - r2, 0.0f);
-    rho += poly6 * w * w * w;
     const float rlen = std::sqrt(r2);
     const float dl = std::max(h - rlen, 0.0f);
+    rho += density * dl * dl * dl;
     const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
     pair_gradient[e] = g;
     coincident += r2 <= tiny2 ? 1 : 0;
@@ -79,7 +78,7 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-  const float h2 = k.h2, poly6 = k.poly6;
+  const float h = k.h, h2 = k.h2, density = k.density;
   float rho = 0.0f;
   std::uint32_t count = 0;
 #pragma omp simd reduction(+ : rho, count)
@@ -87,8 +86,8 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
     const std::uint32_t j = nbr[e];
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const float w = std::max(h2 - r2, 0.0f);
-    rho += poly6 * w * w * w;
+    const float dl = std::max(h - std::sqrt(r2), 0.0f);
+    rho += density * dl * dl * dl;
     count += r2 < h2 ? 1u : 0u;
   }
   return {rho, count};

@@ -23,7 +23,8 @@ struct NeighborArrays {
 // Kernel constants of one pass, premultiplied by the mass / volume factors it needs.
 struct PairConstants {
   float h, h2;
-  float poly6;       // m * Poly6 coefficient: m W(r) = poly6 * (h^2 - r^2)^3
+  float poly6;       // m * Poly6 coefficient: m W(r) = poly6 * (h^2 - r^2)^3 (XSPH)
+  float density;     // m * Spiky coefficient: m W(r) = density * (h - r)^3 (Kernels.h)
   float spiky;       // (m / rho0) * Spiky gradient coefficient
   float coincident2; // pairs with r^2 at or below this have no direction
 };

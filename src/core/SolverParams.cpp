@@ -14,7 +14,11 @@ bool finite(float v) { return std::isfinite(v); }
 
 float SolverParams::particleMass() const {
   const double d = particle_spacing;
-  return static_cast<float>(rest_density * d * d * d / latticeKernelSum(support_radius_factor));
+  return static_cast<float>(rest_density * d * d * d);
+}
+
+float SolverParams::densityMass() const {
+  return static_cast<float>(particleMass() / latticeKernelSum(support_radius_factor));
 }
 
 float SolverParams::cfmEpsilon() const {

@@ -94,8 +94,9 @@ void PbfSolver::computeDensityAndVorticity() {
   const Kernels k(params_.supportRadius());
   const auto& off = grid_->offsets();
   const auto& nbr = grid_->indices();
-  const float mass = params_.particleMass();
-  const float self_density = mass * k.poly6(0.0f);
+  const float mass = params_.particleMass();  // SPH volumes m / rho_j (vorticity)
+  const float density_mass = params_.densityMass();
+  const float self_density = density_mass * k.spiky(0.0f);
   const bool vorticity = params_.vorticity_epsilon > 0.0f;
   if (vorticity) vorticity_.resize(n);
   neighbor_count_.resize(n);
@@ -104,7 +105,7 @@ void PbfSolver::computeDensityAndVorticity() {
 
   const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(),
                              nbr.data()};
-  const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, 0.0f, 0.0f};
+  const PairConstants pc{k.h, k.h2, 0.0f, density_mass * k.spiky_coef, 0.0f, 0.0f};
 
   // Density first (vorticity needs every density).
 #pragma omp parallel for schedule(static)
@@ -145,7 +146,7 @@ void PbfSolver::applyViscosityAndVorticity(float dt) {
 
   const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(),
                              nbr.data()};
-  const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, 0.0f, 0.0f};
+  const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, 0.0f, 0.0f, 0.0f};
   const float* V = velocity_.empty() ? nullptr : velocity_[0].data();
   if (vorticity) {  // |omega| once per particle, not once per pair
     vorticity_norm_.resize(n);

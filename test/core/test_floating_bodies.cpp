@@ -91,7 +91,7 @@ TEST(FloatingBodies, BoxOfHalfTheWatersDensityFloatsHalfSubmerged) {
   // The water line two ways: the free surface measured away from the box (its top particles
   // + d/2), and the level the fluid's mass implies at rho0 with the box's submerged volume.
   const double measured = levelAwayFrom(*run.solver, box.pose.translation(), 0.08f);
-  const double fluid_volume = run.solver->size() * std::pow(kSpacing, 3) / 1.0098;  // m / rho0
+  const double fluid_volume = run.solver->size() * std::pow(kSpacing, 3);  // m / rho0
   const double tank_area = 0.25 * 0.25, box_area = 0.16 * 0.16;
   const double implied_draft = (fluid_volume / tank_area - bottom) / (1.0 - box_area / tank_area);
   const double measured_draft = measured - bottom;

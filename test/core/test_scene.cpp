@@ -47,9 +47,11 @@ TEST(Scene, DefaultsAreSI) {
   const pbf::Scene s = pbf::loadSceneFile(kScenes + "/hydrostatic_tank.yaml");
   EXPECT_FLOAT_EQ(s.solver.rest_density, 1000.0f);
   EXPECT_FLOAT_EQ(s.solver.supportRadius(), 2.0f * s.solver.particle_spacing);
-  // Calibrated to the start lattice: rho0 d^3 / 1.0098 for h = 2d (LatticeBoundary.h).
-  EXPECT_NEAR(s.solver.particleMass(), 1000.0f * std::pow(s.solver.particle_spacing, 3.0f) / 1.0097752f,
+  // The water of one lattice cell; the density sums use it normalised on the start lattice,
+  // m / 1.2359 for h = 2d (LatticeBoundary.h).
+  EXPECT_NEAR(s.solver.particleMass(), 1000.0f * std::pow(s.solver.particle_spacing, 3.0f),
               1e-6 * s.solver.particleMass());
+  EXPECT_NEAR(s.solver.densityMass(), s.solver.particleMass() / 1.23589f, 1e-5 * s.solver.particleMass());
   EXPECT_FLOAT_EQ(s.solver.gravity.z(), -9.81f);
 }
 

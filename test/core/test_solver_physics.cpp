@@ -41,11 +41,14 @@ pbf::SolverParams freeSpaceParams() {
 }
 
 // Scalar transcription of the seed's equations (with the particle mass in eq 7 and 12,
-// which the seed's unit-mass notation leaves out), in double precision.
+// which the seed's unit-mass notation leaves out), in double precision. Two departures from
+// the seed, both ours on purpose: the density is summed with the Spiky kernel whose gradient
+// eq 7 uses (Kernels.h), and the mass in the sums is the lattice-normalised m / S.
 Points referenceDelta(const Points& x, const pbf::SolverParams& p) {
-  const double h = p.supportRadius(), m = p.particleMass(), rho0 = p.rest_density;
+  const double h = p.supportRadius(), m = p.densityMass(), rho0 = p.rest_density;
   const pbf::Kernels k(static_cast<float>(h));
   auto poly6 = [&](double r2) { return r2 < h * h ? double(k.poly6_coef) * std::pow(h * h - r2, 3) : 0.0; };
+  auto density_kernel = [&](double r2) { const double r = std::sqrt(r2); return r < h ? double(k.spiky_coef) * std::pow(h - r, 3) : 0.0; };
   auto spiky = [&](const Eigen::Vector3d& r) -> Eigen::Vector3d {
     const double len = r.norm();
     if (len >= h || len == 0.0) return Eigen::Vector3d::Zero();
@@ -54,13 +57,13 @@ Points referenceDelta(const Points& x, const pbf::SolverParams& p) {
   const std::size_t n = x.size();
   std::vector<double> lambda(n);
   for (std::size_t i = 0; i < n; ++i) {
-    double rho = m * poly6(0.0);
+    double rho = m * density_kernel(0.0);
     Eigen::Vector3d gi = Eigen::Vector3d::Zero();
     double sum = 0.0;
     for (std::size_t j = 0; j < n; ++j) {
       if (j == i) continue;
       const Eigen::Vector3d r = (x[i] - x[j]).cast<double>();
-      rho += m * poly6(r.squaredNorm());                   // eq 2
+      rho += m * density_kernel(r.squaredNorm());          // eq 2
       const Eigen::Vector3d g = (m / rho0) * spiky(r);     // eq 7, k = j (sign irrelevant)
       gi += g;                                              // eq 7, k = i
       sum += g.squaredNorm();
@@ -146,7 +149,7 @@ TEST(SolverPhysics, HydrostaticTankSettlesAtRestDensityAndVolumeLevel) {
   auto solver = pbf_test::makeSolver(scene);
   const float d = scene.solver.particle_spacing;
   const Eigen::Vector2f floor_size = scene.container.sizes().head<2>();
-  // The volume the water's mass implies (m = rho0 d^3 / 1.0098 since the lattice calibration).
+  // The volume the water's mass implies (m = rho0 d^3: the volume of the start lattice).
   const double implied_level = solver->size() * scene.solver.particleMass() / scene.solver.rest_density /
                                (floor_size.x() * floor_size.y());
 

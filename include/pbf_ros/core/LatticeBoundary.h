@@ -50,8 +50,9 @@ class LatticeBoundary {
   std::shared_ptr<const std::vector<Eigen::Vector4f>> table_;
 };
 
-// Sum of the Poly6 kernel over the infinite cubic lattice of spacing d, times d^3, for
-// h = factor * d: 1 for a continuum, 1.0098 for factor 2. The particle mass that puts a
+// Sum of the density kernel (Spiky, Kernels.h) over the infinite cubic lattice of spacing d,
+// times d^3, for h = factor * d: 1 for a continuum, 1.2365 for factor 2 (the kernel's peak
+// at r = 0 makes the self term alone 0.597). The particle mass that puts a
 // lattice particle at exactly rho0 is rho0 d^3 / this.
 double latticeKernelSum(double support_radius_factor);
 
@@ -59,7 +60,7 @@ double latticeKernelSum(double support_radius_factor);
 // scale sum_j |grad_j C|^2 of a resting interior particle, times d^2 (dimensionless).
 double latticeGradientScale(double support_radius_factor);
 
-// Fraction of the Poly6 kernel (support h) lying inside a ball of radius R whose surface is
+// Fraction of the density kernel (Spiky, support h) lying inside a ball of radius R whose surface is
 // at distance s >= 0 from the particle: the continuum volume a sphere lends. For R -> inf it
 // is the half-space fraction. Closed form (the kernel is polynomial in r). Double precision.
 double continuumBallFraction(double s, double radius, double support_radius);

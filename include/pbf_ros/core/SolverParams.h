@@ -84,10 +84,16 @@ struct SolverParams {
   float max_speed_factor = 4.0f;
 
   float supportRadius() const { return support_radius_factor * particle_spacing; }
-  // m = rho0 d^3 / (d^3 sum_lattice W): a particle of the cubic start lattice sits at
-  // exactly rho0 (rho0 d^3 would put it at 1.0098 rho0 for h = 2d, and a fresh scene would
-  // burst at t = 0).
+  // m = rho0 d^3: the water one cell of the start lattice holds. The fluid's weight, momentum
+  // and kinetic energy, the forces on solids and the SPH volumes m / rho use it.
   float particleMass() const;
+  // m / S, S = d^3 sum_lattice W (LatticeBoundary.h): what each particle adds to a density
+  // sum, i.e. the density kernel normalised on the start lattice, so that a particle of the
+  // cubic start lattice sits at exactly rho0 (with m itself it would sit at S rho0, 1.236 rho0
+  // for h = 2d, and a fresh scene would burst at t = 0). The constraint is the issue's
+  // "mass calibrated to the lattice" (C and its gradient only see m / S), while the fluid
+  // keeps the mass of the volume it fills.
+  float densityMass() const;
   // epsilon of eq 6 [1/m^2] (cfm_relaxation times the resting constraint scale).
   float cfmEpsilon() const;
   // XSPH's per-step coefficient c for a step of dt.
