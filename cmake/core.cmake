@@ -29,6 +29,7 @@ add_library(pbf_core
   src/core/RigidBody.cpp
   src/core/FloatingBodies.cpp
   src/core/ParticleChanges.cpp
+  src/core/FluidReach.cpp
   src/core/FluidSources.cpp
   src/core/SolverParams.cpp
   src/core/Scene.cpp

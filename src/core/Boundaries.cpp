@@ -71,7 +71,21 @@ SolidBoundaries::SolidBoundaries(const Eigen::AlignedBox3f& container,
       obstacles_(&obstacles),
       lattice_(&lattice),
       reach_(lattice.reach()),
-      radius_(particle_radius) {}
+      radius_(particle_radius) {
+  near_.resize(obstacles.size());
+  for (std::size_t k = 0; k < near_.size(); ++k) near_[k] = static_cast<std::uint32_t>(k);
+}
+
+void SolidBoundaries::keepOnlyObstaclesNear(const Eigen::AlignedBox3f& fluid) {
+  near_.clear();
+  for (std::size_t k = 0; k < obstacles_->size(); ++k) {
+    const Obstacle& o = (*obstacles_)[k];
+    // The farthest any per-particle test looks: density within the kernel's reach,
+    // projection within the particle radius, friction contact within a spacing.
+    const float r = o.boundingRadius() + std::max(reach_, 2.0f * radius_);
+    if (fluid.squaredExteriorDistance(o.pose.translation()) <= r * r) near_.push_back(static_cast<std::uint32_t>(k));
+  }
+}
 
 bool SolidBoundaries::density(const Eigen::Vector3f& p, float& fraction,
                               Eigen::Vector3f& gradient) const {
@@ -85,7 +99,8 @@ bool SolidBoundaries::density(const Eigen::Vector3f& p, float& fraction,
       near = true;
     }
   }
-  for (const Obstacle& o : *obstacles_) {
+  for (const std::uint32_t k : near_) {
+    const Obstacle& o = (*obstacles_)[k];
     if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + reach_, 2.0f)) continue;
     const bool hit = o.shape == Obstacle::Shape::Box ? boxDensity(o, p, fraction, gradient)
                                                       : curvedDensity(o, p, fraction, gradient);
@@ -167,7 +182,7 @@ bool SolidBoundaries::curvedDensity(const Obstacle& o, const Eigen::Vector3f& p,
 
 bool SolidBoundaries::contact(const Eigen::Vector3f& p, float reach, Eigen::Vector3f& normal,
                               Eigen::Vector3f& surface_motion, int* solid) const {
-  for (std::size_t k = 0; k < obstacles_->size(); ++k) {
+  for (const std::uint32_t k : near_) {
     const Obstacle& o = (*obstacles_)[k];
     if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + reach, 2.0f)) continue;
     if (o.signedDistance(p, normal) > reach) continue;

@@ -242,6 +242,7 @@ SolidBoundaries PbfSolver::boundaries() const {
   SolidBoundaries solids(container_, container_pose_, obstacles_, *lattice_,
                          0.5f * params_.particle_spacing);
   solids.setPreviousPoses(prev_container_pose_, &prev_obstacle_pose_);
+  if (!fluid_reach_.isEmpty()) solids.keepOnlyObstaclesNear(fluid_reach_);
   return solids;
 }
 

@@ -192,6 +192,7 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
     wrench_sums_.reset(SolidBoundaries::kContainerFaces + obstacles_.size(), omp_get_max_threads());
   auto t = Clock::now();
   const bool predicted_finite = predict(dt);
+  if (predicted_finite) updateFluidReach();
   stats.times.other_ms += msSince(t);
   if (!predicted_finite) return false;
 

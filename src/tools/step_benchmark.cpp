@@ -14,6 +14,8 @@
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/Scene.h"
 #include "pbf_ros/core/SceneSetup.h"
+#include "pbf_ros/core/SignedDistanceGrid.h"
+#include "pbf_ros/core/TriangleMesh.h"
 
 #ifndef PBF_SOURCE_DIR
 #define PBF_SOURCE_DIR "."
@@ -32,7 +34,39 @@ float spacingFor(int kilo_particles) {
 
 // Boundary variants for the cost of boundary handling: the seed's clamp only, wall
 // density (the default), and wall density plus two obstacles in the flow.
-enum Boundary { kClampOnly = 0, kWallDensity = 1, kWallDensityAndObstacles = 2 };
+// kFarRobot: wall density plus a robot of 30 links standing beside the tank, none within
+// reach of the fluid (issue 12: solids far from the fluid should cost nothing).
+enum Boundary { kClampOnly = 0, kWallDensity = 1, kWallDensityAndObstacles = 2, kFarRobot = 3 };
+
+// 30 solids as a URDF's links would give them (boxes, cylinders, spheres and meshes through
+// their signed distance grids), in a column beside the dam break's tank (x > 1.6 m).
+std::vector<pbf::Obstacle> farRobotLinks(float spacing, float support_radius) {
+  pbf::TriangleMesh mesh;  // a 6 x 6 x 10 cm box as a mesh: the link geometry of a URDF
+  for (int c = 0; c < 8; ++c)
+    mesh.vertices.emplace_back(c & 1 ? 0.03f : -0.03f, c & 2 ? 0.03f : -0.03f, c & 4 ? 0.05f : -0.05f);
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    mesh.triangles.emplace_back(q[0], q[1], q[2]);
+    mesh.triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  pbf::SignedDistanceGridOptions grid;  // as the robot loader builds them
+  grid.cell = 0.5f * spacing;
+  grid.band = support_radius + spacing;
+  const auto sdf = pbf::SignedDistanceGrid::build(mesh, grid);
+  std::vector<pbf::Obstacle> links;
+  for (int k = 0; k < 30; ++k) {
+    pbf::Obstacle o;
+    switch (k % 4) {
+      case 0: o.shape = pbf::Obstacle::Shape::Box; o.half_extents = Eigen::Vector3f(0.03f, 0.03f, 0.05f); break;
+      case 1: o.shape = pbf::Obstacle::Shape::Cylinder; o.radius = 0.03f; o.half_length = 0.05f; break;
+      case 2: o.shape = pbf::Obstacle::Shape::Sphere; o.radius = 0.04f; break;
+      default: o.shape = pbf::Obstacle::Shape::Mesh; o.sdf = sdf; break;
+    }
+    o.pose.translation() = Eigen::Vector3f(1.8f + 0.1f * (k % 3), 0.25f, 0.05f + 0.1f * (k / 3));
+    links.push_back(o);
+  }
+  return links;
+}
 
 std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles, int boundary = kWallDensity) {
   pbf::Scene scene = pbf::loadSceneFile(std::string(PBF_SOURCE_DIR) + "/config/scenes/dam_break.yaml");
@@ -49,6 +83,8 @@ std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles, int boundary 
     block.pose.translation() = Eigen::Vector3f(1.2f, 0.25f, 0.05f);
     scene.obstacles = {pillar, block};
   }
+  if (boundary == kFarRobot)
+    scene.obstacles = farRobotLinks(spacingFor(kilo_particles), 2.0f * spacingFor(kilo_particles));
   scene.solver.particle_spacing = spacingFor(kilo_particles);
   scene.solver.adaptive_time_step = false;
   scene.solver.time_step = 1.0f / 400.0f;
@@ -100,6 +136,16 @@ BENCHMARK(BM_DamBreakStep)
     ->Name("BM_BoundaryCost")
     ->ArgNames({"kparticles", "threads", "boundary"})
     ->ArgsProduct({{20}, {2}, {kClampOnly, kWallDensity, kWallDensityAndObstacles}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(1.0);
+
+// 30 robot links beside the tank, far from the fluid (3) against none (1), one thread:
+//   pbf_step_benchmark --benchmark_filter=BM_FarRobotLinks --benchmark_repetitions=5
+BENCHMARK(BM_DamBreakStep)
+    ->Name("BM_FarRobotLinks")
+    ->ArgNames({"kparticles", "threads", "boundary"})
+    ->ArgsProduct({{20}, {1}, {kWallDensity, kFarRobot}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);

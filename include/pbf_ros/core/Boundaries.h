@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <vector>
 
 #include "pbf_ros/core/LatticeBoundary.h"
@@ -65,6 +66,11 @@ class SolidBoundaries {
 
   bool hasContainer() const { return has_container_; }
 
+  // Leaves out the obstacles that cannot reach any particle inside `fluid` (their bounding
+  // sphere, grown by the kernel's reach, misses the box): a robot's links far from the water
+  // then cost nothing per particle, not even a distance check. All take part until called.
+  void keepOnlyObstaclesNear(const Eigen::AlignedBox3f& fluid);
+
  private:
   bool containerDensity(const Eigen::Vector3f& q, float& fraction, Eigen::Vector3f& gradient) const;
   bool boxDensity(const Obstacle& o, const Eigen::Vector3f& p, float& fraction,
@@ -77,6 +83,7 @@ class SolidBoundaries {
   Eigen::AlignedBox3f box_;
   Eigen::Isometry3f pose_, inverse_;
   const std::vector<Obstacle>* obstacles_;
+  std::vector<std::uint32_t> near_;  // indices of the obstacles that take part
   Eigen::Isometry3f prev_container_ = Eigen::Isometry3f::Identity();
   const std::vector<Eigen::Isometry3f>* prev_obstacles_ = nullptr;
   const LatticeBoundary* lattice_;
@@ -86,7 +93,7 @@ class SolidBoundaries {
 template <typename Report>
 Eigen::Vector3f SolidBoundaries::project(const Eigen::Vector3f& p_in, Report&& report) const {
   Eigen::Vector3f p = p_in;
-  for (std::size_t k = 0; k < obstacles_->size(); ++k) {
+  for (const std::uint32_t k : near_) {
     const Obstacle& o = (*obstacles_)[k];
     if ((p - o.pose.translation()).squaredNorm() > (o.boundingRadius() + radius_) * (o.boundingRadius() + radius_)) continue;
     Eigen::Vector3f n;
@@ -127,7 +134,7 @@ void SolidBoundaries::densityGradientParts(const Eigen::Vector3f& p, Part&& part
       }
     }
   }
-  for (std::size_t k = 0; k < obstacles_->size(); ++k) {
+  for (const std::uint32_t k : near_) {
     const Obstacle& o = (*obstacles_)[k];
     const float r = o.boundingRadius() + reach_;
     if ((p - o.pose.translation()).squaredNorm() > r * r) continue;

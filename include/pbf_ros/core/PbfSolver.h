@@ -115,6 +115,9 @@ class PbfSolver {
   void applyDeltasAndBoundary();
   void updateVelocities(float dt);
   SolidBoundaries boundaries() const;
+  // Where the particles can be during the attempt in progress (FluidReach.cpp): obstacles
+  // whose reach misses it are left out of every per-particle boundary test.
+  void updateFluidReach();
   // Wrench tracking (WrenchTracking.cpp): what the solids did to the particles, by solid.
   void recordBoundaryDensityPush(const SolidBoundaries& solids);
   void applyDeltasRecordingBoundary(const SolidBoundaries& solids);
@@ -162,6 +165,7 @@ class PbfSolver {
 
   std::unique_ptr<NeighborGrid> grid_;
   std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h
+  Eigen::AlignedBox3f fluid_reach_;  // empty: every obstacle takes part
   bool track_wrenches_ = false;
   WrenchAccumulator wrench_sums_;  // of the attempt in progress
   SolidWrenches wrenches_;         // of the last step
