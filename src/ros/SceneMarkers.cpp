@@ -141,6 +141,38 @@ void addObstacle(const pbf::Obstacle& o, const std::string& domain_frame, const 
     }
   }
 }
+// A nozzle: an arrow along the jet (as long as three radii, at least 5 cm) from the centre
+// of its opening, drawn in its frame so that it moves with it.
+void addEmitter(const pbf::Emitter& e, const std::string& domain_frame, const ros::Time& stamp, int id,
+                visualization_msgs::MarkerArray& array) {
+  auto m = marker(e.frame.empty() ? domain_frame : e.frame, stamp, "emitters", id,
+                  visualization_msgs::Marker::ARROW);
+  const float length = std::max(0.05f, 3.0f * e.radius);
+  const Eigen::Vector3f dir = e.direction.normalized();
+  m.points.push_back(point(e.position - length * dir));
+  m.points.push_back(point(e.position));
+  m.scale.x = 0.5 * e.radius;  // shaft diameter
+  m.scale.y = 2.0 * e.radius;  // head diameter: the nozzle's opening
+  m.scale.z = 0.5 * length;    // head length
+  setColor(m, 0.2f, 0.5f, 1.0f, 0.9f);
+  array.markers.push_back(m);
+}
+
+// A drain: its region, translucent dark blue, in fluid_domain.
+void addDrain(const pbf::Drain& d, const std::string& domain_frame, const ros::Time& stamp, int id,
+              visualization_msgs::MarkerArray& array) {
+  const bool box = d.shape == pbf::Drain::Shape::Box;
+  auto m = marker(domain_frame, stamp, "drains", id,
+                  box ? visualization_msgs::Marker::CUBE : visualization_msgs::Marker::SPHERE);
+  const Eigen::Vector3f centre = box ? Eigen::Vector3f(0.5f * (d.min + d.max)) : d.center;
+  const Eigen::Vector3f size = box ? Eigen::Vector3f(d.max - d.min) : Eigen::Vector3f::Constant(2.0f * d.radius);
+  m.pose.position = point(centre);
+  m.scale.x = size.x();
+  m.scale.y = size.y();
+  m.scale.z = size.z();
+  setColor(m, 0.05f, 0.1f, 0.4f, 0.5f);
+  array.markers.push_back(m);
+}
 }  // namespace
 
 visualization_msgs::MarkerArray makeSceneMarkers(const pbf::Scene& scene,
@@ -160,6 +192,10 @@ visualization_msgs::MarkerArray makeSceneMarkers(const pbf::Scene& scene,
                array);
   int id = 0;
   for (const pbf::Obstacle& o : scene.obstacles) addObstacle(o, domain_frame, stamp, id, array);
+  for (std::size_t k = 0; k < scene.emitters.size(); ++k)
+    addEmitter(scene.emitters[k], domain_frame, stamp, static_cast<int>(k), array);
+  for (std::size_t k = 0; k < scene.drains.size(); ++k)
+    addDrain(scene.drains[k], domain_frame, stamp, static_cast<int>(k), array);
   return array;
 }
 

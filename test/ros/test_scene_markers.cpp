@@ -89,3 +89,43 @@ TEST(SceneMarkers, CylindersAndMeshesLookLikeWhatTheSolverUses) {
   EXPECT_FLOAT_EQ(obstacles[1].points[11].z, 0.1f);  // the last triangle's last vertex
   EXPECT_FLOAT_EQ(obstacles[1].scale.x, 1.0f);
 }
+
+TEST(SceneMarkers, EmittersAreArrowsInTheirFrameAndDrainsTheirRegion) {
+  pbf::Scene scene;
+  scene.container = Eigen::AlignedBox3f(Eigen::Vector3f::Zero(), Eigen::Vector3f::Ones());
+  pbf::Emitter tap;
+  tap.frame = "tap";
+  tap.position = Eigen::Vector3f(0.1f, 0.2f, 0.3f);
+  tap.direction = Eigen::Vector3f(0, 0, -1);
+  tap.radius = 0.02f;
+  tap.speed = 1.0f;
+  scene.emitters.push_back(tap);
+  pbf::Drain box;
+  box.min = Eigen::Vector3f(0.0f, 0.0f, 0.0f);
+  box.max = Eigen::Vector3f(0.2f, 0.1f, 0.05f);
+  pbf::Drain ball;
+  ball.shape = pbf::Drain::Shape::Sphere;
+  ball.center = Eigen::Vector3f(0.5f, 0.5f, 0.0f);
+  ball.radius = 0.03f;
+  scene.drains = {box, ball};
+  const auto array = pbf_ros::makeSceneMarkers(scene, "fluid_domain", ros::Time(1.0));
+  std::vector<visualization_msgs::Marker> emitters, drains;
+  for (const auto& m : array.markers) {
+    if (m.ns == "emitters") emitters.push_back(m);
+    if (m.ns == "drains") drains.push_back(m);
+  }
+  ASSERT_EQ(emitters.size(), 1u);
+  EXPECT_EQ(emitters[0].header.frame_id, "tap");
+  EXPECT_EQ(emitters[0].type, visualization_msgs::Marker::ARROW);
+  ASSERT_EQ(emitters[0].points.size(), 2u);
+  EXPECT_FLOAT_EQ(emitters[0].points[1].z, 0.3f);  // the tip at the nozzle, pointing down
+  EXPECT_GT(emitters[0].points[0].z, emitters[0].points[1].z);
+  EXPECT_NEAR(emitters[0].scale.y, 0.04, 1e-6);    // the head as wide as the opening
+  ASSERT_EQ(drains.size(), 2u);
+  EXPECT_EQ(drains[0].type, visualization_msgs::Marker::CUBE);
+  EXPECT_NEAR(drains[0].pose.position.x, 0.1, 1e-6);
+  EXPECT_NEAR(drains[0].scale.y, 0.1, 1e-6);
+  EXPECT_EQ(drains[1].type, visualization_msgs::Marker::SPHERE);
+  EXPECT_NEAR(drains[1].scale.x, 0.06, 1e-6);
+  EXPECT_EQ(drains[1].header.frame_id, "fluid_domain");
+}

@@ -12,7 +12,9 @@
 namespace pbf_ros {
 
 // The array starts with a DELETEALL so markers of a previous scene disappear.
-// Namespaces: "container" (ids 0 edges, 1 floor), "obstacles" (ids from 0 upwards).
+// Namespaces: "container" (ids 0 edges, 1 floor), "obstacles" (ids from 0 upwards),
+// "emitters" (an arrow per nozzle, id = its index, in its frame) and "drains" (the region,
+// id = its index).
 visualization_msgs::MarkerArray makeSceneMarkers(const pbf::Scene& scene,
                                                  const std::string& domain_frame,
                                                  const ros::Time& stamp);
