@@ -32,6 +32,7 @@ import rosgraph.names
 # The displays of config/pbf.rviz that show the node's topics, by rviz class.
 CLOUD = 'rviz/PointCloud2'
 MARKERS = 'rviz/MarkerArray'
+DRAG = 'rviz/InteractiveMarkers'
 SURFACE = ('rviz/Image', 'rviz/Camera')
 
 
@@ -59,6 +60,8 @@ def fit_config(config, node, spacing, surface):
                 display['Size (m)'] = float(spacing)
         elif cls == MARKERS:
             display['Marker Topic'] = node + '/markers'
+        elif cls == DRAG:
+            display['Update Topic'] = node + '/obstacle_markers/update'
         elif cls in SURFACE:
             display['Image Topic'] = node + '/rgb/image_rect_color'
             display['Enabled'] = True

@@ -242,6 +242,7 @@ FluidSources::FluidSources(std::vector<Emitter> emitters, std::vector<Drain> dra
     if (!err.empty()) throw std::invalid_argument("drains[" + std::to_string(k) + "]." + err);
   }
   state_.resize(emitters_.size());
+  for (std::size_t k = 0; k < emitters_.size(); ++k) state_[k].placed = emitters_[k].frame.empty();
 }
 
 void FluidSources::setEmitterPose(std::size_t k, const Eigen::Isometry3f& pose) {
@@ -249,6 +250,7 @@ void FluidSources::setEmitterPose(std::size_t k, const Eigen::Isometry3f& pose) 
     throw std::invalid_argument("emitter index " + std::to_string(k) + " out of range");
   if (!pose.matrix().allFinite()) throw std::invalid_argument("emitter pose must be finite");
   emitters_[k].pose = pose;
+  state_[k].placed = true;
 }
 
 FluidSources::StepResult FluidSources::afterStep(PbfSolver& solver, double dt,
@@ -278,6 +280,7 @@ std::size_t FluidSources::emitLayers(PbfSolver& solver, std::size_t k, double dt
                                      std::size_t max_particles, StepResult& result) {
   const Emitter& e = emitters_[k];
   EmitterState& s = state_[k];
+  if (!s.placed) return 0;
   const float d = solver.params().particle_spacing;
   const double volume_budget = e.volume > 0.0f ? std::llround(double(e.volume) / (double(d) * d * d)) : -1.0;
   if (volume_budget >= 0.0 && double(s.emitted) >= volume_budget) return 0;

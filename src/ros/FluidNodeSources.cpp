@@ -10,6 +10,9 @@ namespace pbf_ros {
 
 namespace {
 
+// A frame publisher started beside the node needs a moment: no warning before this [wall s].
+constexpr double kEmitterFrameGrace = 3.0;
+
 // A request's double as the solver's float: finite both ways (1e39 is a finite double but
 // an infinite float), or the name of the field that is not.
 bool toFloat(double value, float& out) {
@@ -52,8 +55,8 @@ std::string blockFromRequest(const Emit::Request& req, pbf::FluidBlock& block) {
 
 void FluidNode::applySources(double dt) {
   if (sources_.emitters().empty() && sources_.drains().empty()) return;
-  // Nozzles attached to tf frames go where their frame is now (a frame tf does not know yet
-  // leaves the nozzle where it was; the first time, at the frame's origin-less scene pose).
+  // Nozzles attached to tf frames go where their frame is now. One whose frame tf does not
+  // know stays where it was; until its frame has been seen once it stays shut (FluidSources).
   for (std::size_t k = 0; k < sources_.emitters().size(); ++k) {
     const std::string& frame = sources_.emitters()[k].frame;
     if (frame.empty()) continue;
@@ -61,9 +64,10 @@ void FluidNode::applySources(double dt) {
     Eigen::Isometry3f pose;
     if (attachments_->currentPose(frame, pose)) {
       sources_.setEmitterPose(k, pose);
-    } else {
-      ROS_WARN_THROTTLE(10.0, "pbf_node: no tf for emitter %zu's frame '%s' yet; it emits where it was",
-                        k, frame.c_str());
+    } else if (wallNow() - sources_since_wall_ > kEmitterFrameGrace) {
+      ROS_WARN_THROTTLE(10.0, "pbf_node: no tf for emitter %zu's frame '%s' (%s -> it); it stays "
+                        "where it was (shut, if its frame was never seen)",
+                        k, frame.c_str(), domain_frame_.c_str());
     }
   }
   try {

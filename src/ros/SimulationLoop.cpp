@@ -240,6 +240,7 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
     pbf::FluidSources sources(next.emitters, next.drains, fresh->size());
     solver_ = std::move(fresh);
     sources_ = std::move(sources);
+    sources_since_wall_ = wallNow();
     scene_ = next;
     scene_without_robot_ = scene;
     scene_without_robot_.solver = params;

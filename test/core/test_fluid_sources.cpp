@@ -229,6 +229,32 @@ drains:
                    mass * (double(sources.emitted()) - double(sources.drained())));
 }
 
+TEST(FluidSources, AnEmitterInAFrameWaitsForItsPoseAndFollowsIt) {
+  pbf::Scene scene = tankScene(R"(
+emitters:
+  - {frame: tap, position: [0, 0, 0], direction: [0, 0, -1], radius: 0.01, speed: 1.0}
+)");
+  auto solver = pbf_test::makeSolver(scene);
+  pbf::FluidSources sources(scene.emitters, scene.drains, solver->size());
+  for (int s = 0; s < 20; ++s) sources.afterStep(*solver, solver->step().dt, 100000);
+  EXPECT_EQ(sources.emitted(), 0u);  // tf has not told where 'tap' is: nothing at the origin
+  // The frame turned on its side at (0.15, 0.15, 0.3): the jet goes along -z of the frame,
+  // i.e. +x of the fluid frame.
+  const Eigen::Isometry3f tap = Eigen::Translation3f(0.15f, 0.15f, 0.3f) *
+                                Eigen::AngleAxisf(-float(M_PI) / 2, Eigen::Vector3f::UnitY());
+  EXPECT_THROW(sources.setEmitterPose(0, Eigen::Isometry3f(Eigen::Matrix4f::Constant(NAN))), std::invalid_argument);
+  sources.setEmitterPose(0, tap);
+  const std::size_t before = solver->size();
+  while (sources.emitted() == 0) sources.afterStep(*solver, solver->step().dt, 100000);
+  ASSERT_EQ(sources.emitted(), 1u);  // a 1 cm nozzle at d = 0.02: a single file
+  const Eigen::Vector3f p = solver->positions()[before];
+  const Eigen::Vector3f v = solver->velocities()[before];
+  EXPECT_NEAR(p.y(), 0.15f, 1e-5f);
+  EXPECT_NEAR(p.z(), 0.3f, 1e-5f);
+  EXPECT_GE(p.x(), 0.15f - 1e-5f);
+  EXPECT_TRUE(v.isApprox(Eigen::Vector3f(1.0f, 0.0f, 0.0f), 1e-5f)) << v.transpose();
+}
+
 TEST(FluidSources, BadEmittersDrainsAndBlocksAreNamed) {
   auto expectError = [](const std::string& yaml, const std::string& key) {
     try {

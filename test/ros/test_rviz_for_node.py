@@ -43,6 +43,8 @@ class RvizForNodeTest(unittest.TestCase):
             self.assertEqual(d['Topic'], '/lab/fluid2/particles')
         self.assertEqual(displays(config, 'rviz/MarkerArray')[0]['Marker Topic'],
                          '/lab/fluid2/markers')
+        self.assertEqual(displays(config, 'rviz/InteractiveMarkers')[0]['Update Topic'],
+                         '/lab/fluid2/obstacle_markers/update')
         for cls in ('rviz/Image', 'rviz/Camera'):
             self.assertEqual(displays(config, cls)[0]['Image Topic'],
                              '/lab/fluid2/rgb/image_rect_color')

@@ -60,6 +60,8 @@ class FluidSources {
   const std::vector<Emitter>& emitters() const { return emitters_; }
   const std::vector<Drain>& drains() const { return drains_; }
   // Where emitter k's frame is now (fluid_domain); a non-finite pose throws, nothing changes.
+  // An emitter attached to a frame stays shut until its frame's pose has been set once
+  // (rather than emitting at the fluid frame's origin before tf knows the frame).
   void setEmitterPose(std::size_t k, const Eigen::Isometry3f& pose);
 
   struct StepResult {
@@ -89,6 +91,7 @@ class FluidSources {
   struct EmitterState {
     double travel = 0.0;          // how far the last layer has gone [m]
     std::uint64_t emitted = 0;
+    bool placed = false;          // its pose is known (always, without a frame)
   };
   std::size_t emitLayers(PbfSolver& solver, std::size_t k, double dt, std::size_t max_particles,
                          StepResult& result);

@@ -210,6 +210,7 @@ class FluidNode {
   std::unique_ptr<SolidWrenchPublishers> wrench_pubs_;  // ~wrench/<solid>
   pbf::FloatingBodies floating_;       // the scene's dynamic obstacles (moved after each step)
   pbf::FluidSources sources_;          // emitters, drains and ~emit, with their books
+  double sources_since_wall_ = 0.0;    // when sources_ was (re)built [wall s]
   std::unique_ptr<ObstacleMover> mover_;  // rviz drags and ~obstacle_pose/* move free obstacles
   bool markers_stale_ = false;         // a moved obstacle: ~markers to be sent again
   double last_markers_wall_ = 0.0;
