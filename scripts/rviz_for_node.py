@@ -78,8 +78,9 @@ def robot_display(param):
 
 
 def wrench_display(node, solid):
-    """An rviz Wrench display of the node's ~wrench/<solid>: 5 cm of arrow per newton."""
-    return {'Accept NaN Values': False, 'Alpha': 1, 'Arrow Width': 0.3,
+    """An rviz Wrench display of the node's ~wrench/<solid>: 5 cm of arrow per newton, 2 cm
+    wide (rviz hides an arrow shorter than its width: at 0.3, a cup's 2 N would not show)."""
+    return {'Accept NaN Values': False, 'Alpha': 1, 'Arrow Width': 0.02,
             'Class': 'rviz/WrenchStamped', 'Enabled': True, 'Force Arrow Scale': 0.05,
             'Force Color': '204; 51; 51', 'History Length': 1,
             'Name': 'Wrench on %s (~wrench/%s)' % (solid, solid), 'Queue Size': 10,
