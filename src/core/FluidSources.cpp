@@ -80,6 +80,10 @@ std::string Emitter::validate() const {
   }
   if ((speed > 0.0f) == (rate > 0.0f))
     return "speed/rate: expected exactly one of speed [m/s] or rate [m^3/s], > 0";
+  if (speed > kMaxEmitterSpeed) {
+    e << "speed: expected at most " << kMaxEmitterSpeed << " m/s, got " << speed;
+    return e.str();
+  }
   if (!finite(volume) || volume < 0.0f) {
     e << "volume: expected a number >= 0 [m^3] (0 = no limit), got " << volume;
     return e.str();
@@ -285,11 +289,15 @@ std::size_t FluidSources::emitLayers(PbfSolver& solver, std::size_t k, double dt
   const double volume_budget = e.volume > 0.0f ? std::llround(double(e.volume) / (double(d) * d * d)) : -1.0;
   if (volume_budget >= 0.0 && double(s.emitted) >= volume_budget) return 0;
   // Open from `start` on: only the part of the step after it counts.
+  // Scene::validate bounds the nozzle in spacings; a solver whose spacing shrank since
+  // (reconfigure rebuilds, so only a direct caller) must not make a layer of millions.
+  if (e.radius > kMaxEmitterRadiusInSpacings * d) return 0;
   const double t1 = solver.time(), t0 = t1 - dt;
   const double open = std::clamp(t1 - std::max(t0, double(e.start)), 0.0, dt);
   if (open <= 0.0) return 0;
   const std::vector<Eigen::Vector2f> disc = discSites(e.radius, d);
-  const double speed = e.speed > 0.0f ? double(e.speed) : double(e.rate) / (double(disc.size()) * d * d);
+  const double speed = std::min<double>(
+      kMaxEmitterSpeed, e.speed > 0.0f ? double(e.speed) : double(e.rate) / (double(disc.size()) * d * d));
   s.travel += speed * open;
   Eigen::Vector3f u, w;
   planeBasis(e.direction, u, w);

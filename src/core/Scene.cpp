@@ -307,6 +307,12 @@ Emitter readEmitter(const YAML::Node& n, const std::string& origin, const std::s
   if (n["volume"] && !(e.volume > 0.0f)) fail(origin, key + ".volume", "a number > 0 [m^3] (leave it out for no limit)");
   if (e.start < 0.0f) fail(origin, key + ".start", "a time >= 0 [s]");
   e.direction.normalize();
+  const std::string err = e.validate();  // what the checks above do not cover (speed bound)
+  if (!err.empty()) {  // "field: expected what" -> fail(key.field, "what")
+    std::string what = err.substr(err.find(':') + 2);
+    if (what.rfind("expected ", 0) == 0) what = what.substr(9);
+    fail(origin, key + "." + err.substr(0, err.find(':')), what);
+  }
   return e;
 }
 
@@ -529,6 +535,11 @@ std::string Scene::validate() const {
     // A fixed nozzle outside the container could never emit anything: say so now.
     if (emitters[i].frame.empty() && !container.contains(emitters[i].position)) {
       err << "emitters[" << i << "].position is outside the container";
+      return err.str();
+    }
+    if (emitters[i].radius > kMaxEmitterRadiusInSpacings * d) {
+      err << "emitters[" << i << "].radius " << emitters[i].radius << " m is more than "
+          << kMaxEmitterRadiusInSpacings << " particle spacings (" << d << " m)";
       return err.str();
     }
   }

@@ -276,6 +276,8 @@ TEST(FluidSources, BadEmittersDrainsAndBlocksAreNamed) {
               "'emitters[0].direction'");
   expectError("emitters:\n  - {position: [5, 0.1, 0.2], direction: [0, 0, -1], radius: 0.02, speed: 1}\n",
               "emitters[0].position is outside the container");
+  expectError(nozzle + "radius: 0.02, speed: 3.0e8}\n", "'emitters[0].speed': expected at most 1000 m/s");
+  expectError(nozzle + "radius: 1.0e30, speed: 1}\n", "emitters[0].radius 1e+30 m is more than 200 particle spacings");
   expectError("drains:\n  - {box: {min: [0.1, 0, 0], max: [0.0, 0.1, 0.1]}}\n", "'drains[0].box'");
   expectError("drains:\n  - {sphere: {center: [0.1, 0, 0], radius: inf}}\n", "'drains[0].sphere.radius'");
   expectError("drains:\n  - {}\n", "'drains[0]'");

@@ -11,12 +11,16 @@
 
 namespace pbf {
 
+// Faster than this is a typo, not a nozzle [m/s] (the solver caps particle speeds far lower).
+constexpr float kMaxEmitterSpeed = 1000.0f;
+
 struct Emitter {
   Eigen::Vector3f position = Eigen::Vector3f::Zero();    // centre of the opening [m]
   Eigen::Vector3f direction = -Eigen::Vector3f::UnitZ(); // where the jet goes (normalised)
   float radius = 0.02f;  // of the opening [m]; the layer holds the lattice sites within it
   // Exit speed [m/s]. Alternatively `rate`, a volume flow [m^3/s], from which the speed
-  // follows (rate / (sites per layer * d^2)); exactly one of the two is > 0.
+  // follows (rate / (sites per layer * d^2), at most kMaxEmitterSpeed); exactly one of the
+  // two is > 0.
   float speed = 0.0f;
   float rate = 0.0f;
   float volume = 0.0f;   // total to emit [m^3] (rounded to whole particles); 0 = no limit

@@ -46,6 +46,8 @@ constexpr std::size_t kMaxFluidBlocks = 1000;
 constexpr std::size_t kMaxObstacles = 256;
 constexpr std::size_t kMaxSceneEmitters = 64;
 constexpr std::size_t kMaxSceneDrains = 64;
+// A nozzle wider than this many spacings would emit ~10^5 sites a layer: refused.
+constexpr float kMaxEmitterRadiusInSpacings = 200.0f;
 
 // An obstacle the fluid moves (RigidBody.h, FloatingBodies.h). Its obstacle's `frame` is the
 // tf frame the node publishes the body's pose on (offset identity), `pose` where it starts.
