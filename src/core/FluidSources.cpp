@@ -115,6 +115,10 @@ std::string Drain::validate() const {
 std::string validateBlock(const FluidBlock& b) {
   std::ostringstream e;
   if (!b.velocity.allFinite()) return "velocity: expected 3 finite numbers, got " + describe(b.velocity);
+  if (b.velocity.norm() > kMaxEmitterSpeed) {
+    e << "velocity: expected at most " << kMaxEmitterSpeed << " m/s, got " << describe(b.velocity);
+    return e.str();
+  }
   if (b.shape == FluidBlock::Shape::Box) {
     if (!b.min.allFinite()) return "min: expected 3 finite numbers, got " + describe(b.min);
     if (!b.max.allFinite()) return "max: expected 3 finite numbers, got " + describe(b.max);

@@ -301,6 +301,10 @@ TEST(FluidSources, BadEmittersDrainsAndBlocksAreNamed) {
   EXPECT_EQ(pbf::validateBlock(b).rfind("min", 0), 0u);
   b.min.z() = 0.3f;
   EXPECT_EQ(pbf::validateBlock(b).rfind("min/max", 0), 0u);
+  b.min.z() = 0.1f;
+  b.velocity = Eigen::Vector3f(0.0f, 0.0f, -2000.0f);
+  EXPECT_EQ(pbf::validateBlock(b).rfind("velocity: expected at most 1000 m/s", 0), 0u) << pbf::validateBlock(b);
+  b.velocity.setZero();
   b.shape = pbf::FluidBlock::Shape::Sphere;
   b.radius = -1.0f;
   EXPECT_EQ(pbf::validateBlock(b).rfind("radius", 0), 0u);
