@@ -137,19 +137,9 @@ std::string validateBlock(const FluidBlock& b) {
 std::vector<Eigen::Vector3f> blockSites(const FluidBlock& b, float d) {
   std::vector<Eigen::Vector3f> sites;
   if (!validateBlock(b).empty() || !(d > 0.0f)) return sites;
-  Eigen::Vector3f lo, hi;
-  if (b.shape == FluidBlock::Shape::Box) {
-    lo = b.min;
-    hi = b.max;
-  } else {
-    lo = b.center - Eigen::Vector3f::Constant(b.radius);
-    hi = b.center + Eigen::Vector3f::Constant(b.radius);
-  }
-  // As Scene::initialParticles: cell-centred, the lattice centred in the block; a size that
-  // is a whole number of spacings up to round-off (0.33f - 0.21f = 3.9999 d) gets them all.
-  const Eigen::Vector3i n = ((hi - lo) / d + Eigen::Vector3f::Constant(1e-3f)).array().floor().cast<int>().max(1);
-  const Eigen::Vector3f start = lo + 0.5f * ((hi - lo) - (n.cast<float>() * d)) +
-                                Eigen::Vector3f::Constant(0.5f * d);
+  // The scene's lattice, but a size that is a whole number of spacings up to round-off
+  // gets them all (an ~emit request's box is typed by hand).
+  const auto [start, n] = blockLattice(b, d, 1e-3f);
   for (int z = 0; z < n.z(); ++z)
     for (int y = 0; y < n.y(); ++y)
       for (int x = 0; x < n.x(); ++x) {

@@ -29,7 +29,7 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-  const float h = k.h, h2 = k.h2, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
+  const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
 #pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)

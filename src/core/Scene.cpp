@@ -377,6 +377,23 @@ Scene parseScene(const std::string& text, const std::string& origin);
 
 }  // namespace
 
+BlockLattice blockLattice(const FluidBlock& b, float d, float slack) {
+  Eigen::Vector3f lo, hi;
+  if (b.shape == FluidBlock::Shape::Box) {
+    lo = b.min;
+    hi = b.max;
+  } else {
+    lo = b.center - Eigen::Vector3f::Constant(b.radius);
+    hi = b.center + Eigen::Vector3f::Constant(b.radius);
+  }
+  const Eigen::Vector3i n =
+      ((hi - lo) / d + Eigen::Vector3f::Constant(slack)).array().floor().cast<int>().max(1);
+  // Centred in the block, so that round-off in (hi - lo) / d never adds a layer.
+  const Eigen::Vector3f start =
+      lo + 0.5f * ((hi - lo) - (n.cast<float>() * d)) + Eigen::Vector3f::Constant(0.5f * d);
+  return {start, n};
+}
+
 Scene loadSceneString(const std::string& text, const std::string& origin) {
   try {
     return parseScene(text, origin);
@@ -572,18 +589,7 @@ void forEachInitialParticle(const Scene& scene, Visit visit) {
   const float d = scene.solver.particle_spacing;
   for (std::size_t bi = 0; bi < fluid.size(); ++bi) {
     const FluidBlock& b = fluid[bi];
-    Eigen::Vector3f lo, hi;
-    if (b.shape == FluidBlock::Shape::Box) {
-      lo = b.min;
-      hi = b.max;
-    } else {
-      lo = b.center - Eigen::Vector3f::Constant(b.radius);
-      hi = b.center + Eigen::Vector3f::Constant(b.radius);
-    }
-    const Eigen::Vector3i n = ((hi - lo) / d).array().floor().cast<int>().max(1);
-    // Centre the lattice in the block so that round-off in (hi - lo) / d never adds a layer.
-    const Eigen::Vector3f start = lo + 0.5f * ((hi - lo) - (n.cast<float>() * d)) +
-                                  Eigen::Vector3f::Constant(0.5f * d);
+    const auto [start, n] = blockLattice(b, d);
     for (int z = 0; z < n.z(); ++z)
       for (int y = 0; y < n.y(); ++y)
         for (int x = 0; x < n.x(); ++x) {

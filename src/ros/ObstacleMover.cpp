@@ -1,4 +1,5 @@
 #include "pbf_ros/ros/ObstacleMover.h"
+#include "pbf_ros/ros/SceneMarkers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,19 +15,6 @@ namespace {
 
 constexpr double kMarkerUpdatePeriod = 0.1;  // [wall s] between handle pose updates
 
-geometry_msgs::Pose msgFromPose(const Eigen::Isometry3f& t) {
-  geometry_msgs::Pose p;
-  p.position.x = t.translation().x();
-  p.position.y = t.translation().y();
-  p.position.z = t.translation().z();
-  const Eigen::Quaternionf q(t.linear());
-  p.orientation.x = q.x();
-  p.orientation.y = q.y();
-  p.orientation.z = q.z();
-  p.orientation.w = q.w();
-  return p;
-}
-
 std::string nameOf(std::size_t index) { return "obstacle_" + std::to_string(index); }
 
 // Six controls (move and rotate about x, y, z) and a translucent handle as large as the
@@ -37,7 +25,7 @@ visualization_msgs::InteractiveMarker dragMarker(const pbf::Obstacle& o, std::si
   m.header.frame_id = frame;
   m.name = nameOf(index);
   m.description = "drag " + m.name;
-  m.pose = msgFromPose(o.pose);
+  m.pose = poseMsg(o.pose);
   const float radius = o.boundingRadius();
   m.scale = 2.2f * radius;
   visualization_msgs::InteractiveMarkerControl handle;
@@ -246,7 +234,7 @@ bool ObstacleMover::apply(pbf::PbfSolver& solver, pbf::Scene& scene) {
   if (moved && ((now - last_marker_update_).toSec() >= kMarkerUpdatePeriod || !arrived.empty())) {
     last_marker_update_ = now;
     for (const auto& [k, target] : targets)
-      if (k < scene.obstacles.size()) server_.setPose(nameOf(k), msgFromPose(scene.obstacles[k].pose));
+      if (k < scene.obstacles.size()) server_.setPose(nameOf(k), poseMsg(scene.obstacles[k].pose));
     server_.applyChanges();
   }
   return moved;

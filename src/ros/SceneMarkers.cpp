@@ -14,16 +14,6 @@ geometry_msgs::Point point(const Eigen::Vector3f& v) {
   return p;
 }
 
-geometry_msgs::Pose poseOf(const Eigen::Isometry3f& t) {
-  geometry_msgs::Pose pose;
-  pose.position = point(t.translation());
-  const Eigen::Quaternionf q(t.linear());
-  pose.orientation.x = q.x();
-  pose.orientation.y = q.y();
-  pose.orientation.z = q.z();
-  pose.orientation.w = q.w();
-  return pose;
-}
 
 visualization_msgs::Marker marker(const std::string& frame, const ros::Time& stamp,
                                   const std::string& ns, int id, int type) {
@@ -86,7 +76,7 @@ void addObstacle(const pbf::Obstacle& o, const std::string& domain_frame, const 
   const Eigen::Isometry3f pose = o.frame.empty() ? o.pose : o.offset;
   auto solid = [&](int type) {
     auto m = marker(frame, stamp, "obstacles", id++, type);
-    m.pose = poseOf(pose);
+    m.pose = poseMsg(pose);
     setColor(m, 0.95f, 0.6f, 0.2f, 0.8f);
     return m;
   };
@@ -113,7 +103,7 @@ void addObstacle(const pbf::Obstacle& o, const std::string& domain_frame, const 
       array.markers.push_back(body);
       for (float end : {-o.half_length, o.half_length}) {
         auto cap = solid(visualization_msgs::Marker::SPHERE);
-        cap.pose = poseOf(pose * Eigen::Translation3f(0.0f, 0.0f, end));
+        cap.pose = poseMsg(pose * Eigen::Translation3f(0.0f, 0.0f, end));
         cap.scale.x = cap.scale.y = cap.scale.z = 2.0 * o.radius;
         array.markers.push_back(cap);
       }
@@ -174,6 +164,17 @@ void addDrain(const pbf::Drain& d, const std::string& domain_frame, const ros::T
   array.markers.push_back(m);
 }
 }  // namespace
+
+geometry_msgs::Pose poseMsg(const Eigen::Isometry3f& t) {
+  geometry_msgs::Pose pose;
+  pose.position = point(t.translation());
+  const Eigen::Quaternionf q(t.linear());
+  pose.orientation.x = q.x();
+  pose.orientation.y = q.y();
+  pose.orientation.z = q.z();
+  pose.orientation.w = q.w();
+  return pose;
+}
 
 visualization_msgs::MarkerArray makeSceneMarkers(const pbf::Scene& scene,
                                                  const std::string& domain_frame,

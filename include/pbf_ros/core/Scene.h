@@ -39,6 +39,15 @@ struct FluidBlock {
   std::string frame;
 };
 
+// The cubic lattice of spacing d in a block's bounding box, centred in it: n sites per axis
+// from `start` (cell-centred). `slack` (in spacings) lets a size a hair short of a whole
+// number of spacings (round-off: 0.33f - 0.21f = 3.9999 d) count as whole.
+struct BlockLattice {
+  Eigen::Vector3f start;
+  Eigen::Vector3i n;
+};
+BlockLattice blockLattice(const FluidBlock& b, float d, float slack = 0.0f);
+
 // Upper bounds on what a scene file may ask for: a hostile or broken file is refused with
 // a clear message instead of taking minutes and gigabytes to load.
 constexpr std::size_t kMaxSceneFileBytes = 1 << 20;  // 1 MiB (the shipped scenes: < 2 kB)
