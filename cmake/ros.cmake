@@ -33,6 +33,7 @@ add_library(pbf_ros_node
   src/ros/SurfaceImageConversion.cpp
   src/ros/SurfaceRenderThread.cpp
   src/ros/TfAttachments.cpp
+  src/ros/TfStampGate.cpp
   src/ros/TopicRateDiagnostic.cpp)
 target_include_directories(pbf_ros_node PUBLIC include ${CATKIN_DEVEL_PREFIX}/include)
 # pbf_render brings its GL back-ends (OSMesa, EGL) but never libGL/libOpenGL.

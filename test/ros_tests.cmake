@@ -15,6 +15,7 @@ catkin_add_gtest(test_ros_units
   test/ros/test_scene_markers.cpp
   test/ros/test_snapshot_buffer.cpp
   test/ros/test_stats_and_health.cpp
+  test/ros/test_tf_stamp_gate.cpp
   test/ros/test_wrench_targets.cpp)
 if(TARGET test_ros_units)
   # catkin links gtest but not its main().
@@ -37,6 +38,7 @@ add_rostest(test/floating_bodies.test DEPENDENCIES pbf_node)
 add_rostest(test/sources_and_drains.test DEPENDENCIES pbf_node)
 add_rostest(test/robot_pouring.test DEPENDENCIES pbf_node)
 add_rostest(test/obstacle_mover.test DEPENDENCIES pbf_node)
+add_rostest(test/paused_tf.test DEPENDENCIES pbf_node)
 # The nodelet in a manager beside depth_image_proc's point_cloud_xyzrgb.
 add_rostest(test/fluid_nodelet.test DEPENDENCIES pbf_fluid_nodelet)
 

@@ -282,6 +282,8 @@ void FluidNode::publishFloatingPoses() {
   for (const auto& [index, body] : floating_.bodies()) {
     const Eigen::Isometry3f& pose = body.shape().pose;
     if (!pose.matrix().allFinite() || index >= scene_.obstacles.size()) continue;
+    // A rebuild while paused on /clock comes at the stamp the last step sent (TfStampGate).
+    if (!floating_tf_stamps_.admit(scene_.obstacles[index].frame, now)) continue;
     geometry_msgs::TransformStamped t;
     t.header.stamp = now;
     t.header.frame_id = domain_frame_;

@@ -51,6 +51,7 @@
 #include "pbf_ros/ros/SolidWrenchPublishers.h"
 #include "pbf_ros/ros/SurfaceRenderStatus.h"
 #include "pbf_ros/ros/TfAttachments.h"
+#include "pbf_ros/ros/TfStampGate.h"
 #include "pbf_ros/ros/TopicRateDiagnostic.h"
 
 namespace pbf_ros {
@@ -216,6 +217,7 @@ class FluidNode {
   double last_markers_wall_ = 0.0;
   std::unique_ptr<tf2_ros::TransformBroadcaster> floating_tf_;
   double last_floating_tf_wall_ = 0.0;
+  TfStampGate floating_tf_stamps_;     // no floating pose twice at one stamp (paused resets)
   std::atomic<bool> running_{false};
   std::thread sim_thread_;
 
