@@ -99,6 +99,9 @@ int main(int argc, char** argv) {
                   r.steps, r.sim_seconds, mark(r.finite), mark(r.inside), mark(r.completed),
                   r.bound_name.c_str(), r.max_kinetic / r.bound, settled, r.wall_seconds,
                   r.pass() ? "PASS" : "FAIL");
+      if (r.gain_bound > 0)
+        std::printf("    fluid + bodies: mechanical energy rose at most %.3g J above its start (allowed %.3g J)\n",
+                    r.max_gain, r.gain_bound);
       if (!r.pass()) std::printf("    first failure: %s\n", r.first_failure.c_str());
       std::fflush(stdout);
       if (csv)

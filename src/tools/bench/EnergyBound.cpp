@@ -28,4 +28,19 @@ EnergyBound energyBound(const std::vector<Eigen::Vector3f>& positions,
   return b;
 }
 
+double bodiesAllowance(const pbf::FloatingBodies& bodies, const pbf::SolverParams& params,
+                       const Eigen::AlignedBox3f& container) {
+  const double g = std::max<double>(params.gravity.norm(), 9.81);
+  double allowance = 0.0;
+  for (const auto& [index, body] : bodies.bodies()) {
+    const pbf::Obstacle& o = body.shape();
+    double lowest = 0.0;  // how far below its centre the body reaches, at least
+    if (o.shape == pbf::Obstacle::Shape::Sphere) lowest = o.radius;
+    if (o.shape == pbf::Obstacle::Shape::Box) lowest = o.half_extents.minCoeff();
+    const double drop = std::max(0.0, double(o.pose.translation().z()) - (container.min().z() + lowest));
+    allowance += body.kineticEnergy() + body.mass() * g * drop;
+  }
+  return allowance;
+}
+
 }  // namespace pbf_bench

@@ -20,6 +20,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "pbf_ros/core/FloatingBodies.h"
 #include "pbf_ros/core/SolverParams.h"
 
 namespace pbf_bench {
@@ -32,6 +33,14 @@ struct EnergyBound {
   double physical() const { return initial_kinetic + initial_potential; }
   double settled() const { return physical() + overlap_allowance; }
 };
+
+// Floating bodies in the box can give the fluid their kinetic energy and the potential
+// energy of sinking to the floor (centre no lower than the floor plus the body's smallest
+// half extent), under the case's gravity. A body that rises takes energy from the fluid, so
+// this is what the bodies can add at most:
+//   E_kin(t) + E_kin,bodies(t) <= physical() + bodiesAllowance(...)
+double bodiesAllowance(const pbf::FloatingBodies& bodies, const pbf::SolverParams& params,
+                       const Eigen::AlignedBox3f& container);
 
 // Positions outside the box count at the place the solver will clamp them to.
 EnergyBound energyBound(const std::vector<Eigen::Vector3f>& positions,

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pbf_ros/core/FloatingBodies.h"
 #include "pbf_ros/core/PbfSolver.h"
 
 namespace pbf_bench {
@@ -24,6 +25,14 @@ struct StressCase {
   // Particles start overlapping: the cap bound applies during the run and the settled
   // bound at its end, instead of the physical bound throughout (EnergyBound.h).
   bool overlapping_start = false;
+  // Rigid bodies coupled to the fluid (the scene's `dynamic` obstacles of the solver `make`
+  // builds), moved after every step; empty = none. The energy checked is then the whole
+  // system's: the bodies' kinetic energy counts with the fluid's, and the potential energy
+  // they can give up with the budget (EnergyBound.h, bodiesAllowance).
+  std::function<pbf::FloatingBodies()> bodies;
+  // Simulated time the fluid settles around the bodies, held still, before the run and its
+  // checks start (the start lattice's settling would hide what the coupling does).
+  double settle = 0.0;
 };
 
 struct StressResult {
@@ -36,6 +45,9 @@ struct StressResult {
   double max_kinetic = 0.0, bound = 0.0;        // [J]; bound applied at every step
   double final_kinetic = 0.0, final_bound = 0.0;  // [J]; overlapping starts only
   std::string bound_name;                         // "physical" or "speed cap"
+  // With floating bodies: the largest rise of the whole system's mechanical energy (fluid
+  // and bodies, kinetic plus potential) above its start, and what is allowed (EnergyBound.h).
+  double max_gain = 0.0, gain_bound = 0.0;
   std::string first_failure;        // what failed first, at which step
   // Kinetic energy over time (decimated to at most ~2000 samples) for plots.
   std::vector<double> trace_t, trace_kinetic;
