@@ -12,6 +12,12 @@ the last keyframe the arm holds still.
   ~keyframes  list of [t, x, z, pitch] (default: fill under the tap, hold, carry, pour, hold)
   ~rate       [Hz] of simulated time (default 100)
   ~lookahead  [s] (default 0.05)
+  ~stats      the fluid node's statistics topic (default /fluid/stats)
+
+The keyframe times are the fluid's simulated time, which a ~reset of the node sets back to 0
+(the tap opens again at its `start`) while /clock goes on: the node's ~stats carry both (the
+header's stamp on /clock, sim_time the fluid's), so the arm starts its pour over with the
+fluid instead of holding its cup tipped while the tap runs again.
 
 Follows /clock (the demo's node publishes it). Each joint state is stamped ~lookahead ahead
 of the clock (the trajectory is known in advance, like a controller's set point): the node
@@ -22,9 +28,11 @@ at ~startup_stamp (default 0.02 s, robot_state_publisher's publish interval: it 
 stamps closer than that to the last one it published, which starts at 0).
 """
 import math
+import threading
 import time
 
 import rospy
+from pbf_ros.msg import SimulationStats
 from sensor_msgs.msg import JointState
 
 UPPER_ARM, FOREARM = 0.22, 0.18  # shoulder -> elbow -> wrist [m], from the URDF
@@ -81,6 +89,23 @@ def check(keyframes):
                                  % (k, name, angle, limit))
 
 
+class FluidTime:
+    """The fluid's simulated time at a /clock time: /clock minus where the fluid's time last
+    restarted (0 until the node says otherwise), from the node's ~stats."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._offset = 0.0
+
+    def on_stats(self, msg):
+        with self._lock:
+            self._offset = msg.header.stamp.to_sec() - msg.sim_time
+
+    def at(self, clock):
+        with self._lock:
+            return clock - self._offset
+
+
 def message(stamp, angles):
     msg = JointState()
     msg.header.stamp = stamp
@@ -104,6 +129,9 @@ def main():
     except ValueError as e:
         rospy.logfatal('pouring_arm_trajectory: %s', e)
         raise SystemExit(2)
+    fluid_time = FluidTime()
+    rospy.Subscriber(rospy.get_param('~stats', '/fluid/stats'), SimulationStats,
+                     fluid_time.on_stats, queue_size=1)
     pub = rospy.Publisher('joint_states', JointState, queue_size=10, latch=True)
     pub.publish(message(rospy.Time.from_sec(startup_stamp),
                         inverse_kinematics(*cup_at(keyframes, 0.0))))
@@ -118,7 +146,8 @@ def main():
             continue
         last = now
         ahead = now + rospy.Duration.from_sec(lookahead)
-        pub.publish(message(ahead, inverse_kinematics(*cup_at(keyframes, ahead.to_sec()))))
+        t = fluid_time.at(ahead.to_sec())
+        pub.publish(message(ahead, inverse_kinematics(*cup_at(keyframes, t))))
         try:
             rospy.sleep(1.0 / rate_hz)
         except rospy.ROSInterruptException:

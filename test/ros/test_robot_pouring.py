@@ -2,8 +2,9 @@
 """The robot pouring demo (issue 12, part 5) headless: the tap fills the arm's cup with 0.2 l,
 the arm holds it still, carries it over the basin and pours. Checks that the water's vertical
 force on the cup (~wrench/cup) matches the weight of the water in it within 10 % while it is
-held still, that the ball floats, and that the particle count follows the tap and the drain
-(the books of ~stats balance in every message; the tap gives its volume, the drain takes)."""
+held still, that the ball floats, that the particle count follows the tap and the drain
+(the books of ~stats balance in every message; the tap gives its volume, the drain takes),
+and that after ~reset the arm starts over with the fluid and the cup fills again."""
 import math
 import threading
 import unittest
@@ -12,7 +13,7 @@ import rospy
 import rostest
 import tf2_ros
 from geometry_msgs.msg import WrenchStamped
-from std_srvs.srv import SetBool
+from std_srvs.srv import SetBool, Trigger
 
 from fluid_test_util import NODE, Latest, cloud_listener, cloud_points, stats_listener
 
@@ -102,6 +103,23 @@ class RobotPouringTest(unittest.TestCase):
         rospy.loginfo('ball centre at z = %.4f m', z)
         self.assertGreater(z, 0.03 + 0.01)   # off the floor (radius 3 cm)
         self.assertLess(z, 0.06 + 0.02)      # not above the water (0.06 m at the start)
+
+        # ~reset starts the fluid's time again (not /clock's): the arm starts over with it,
+        # so the tap fills the upright cup again instead of pouring past the tipped one.
+        reset = rospy.ServiceProxy(NODE + '/reset', Trigger)
+        answer = reset()
+        self.assertTrue(answer.success, answer.message)
+        again = stats.next(timeout=60.0, condition=lambda m: m.sim_time > 2.0 and
+                           m.header.stamp.to_sec() > end.header.stamp.to_sec() + 2.0)
+        clouds = cloud_listener()
+        try:
+            cloud = clouds.next(timeout=30.0, condition=lambda c: c.header.stamp >= again.header.stamp)
+        finally:
+            clouds.close()
+        refilled = self.in_cup(buffer, cloud)
+        rospy.loginfo('after ~reset, at %.2f s of fluid time the cup holds %d particles',
+                      again.sim_time, refilled)
+        self.assertGreater(refilled, 80)
         stats.close()
 
     @staticmethod
