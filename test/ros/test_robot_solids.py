@@ -2,12 +2,16 @@
 """A robot's links as solids (issue 12, part 1 and 2), on probe_robot.urdf: its box link in
 the tank keeps the fluid out and feels the water's buoyancy; a link whose mesh is missing
 a degenerate mesh and a link without tf are reported by name while the rest takes part; a
-new URDF on the parameter server is read on ~reset, and one that does not parse is reported
-while the fluid runs on."""
+new URDF on the parameter server is read on ~reset and on a scene switch, and one that does
+not parse is reported while the fluid runs on; a link ~robot_link_regex leaves out is no
+solid; wrenches are measured only while asked for, and come at ~wrench_rate."""
+import os
 import threading
 import time
 import unittest
 
+import dynamic_reconfigure.client
+import rospkg
 import rospy
 import rostest
 import tf2_ros
@@ -71,7 +75,10 @@ class RobotSolidsTest(unittest.TestCase):
         self.broadcaster = place_robot_base()
         stats = stats_listener()
         try:
-            stats.next(timeout=60.0, condition=lambda m: m.sim_time > 1.0)
+            s = stats.next(timeout=60.0, condition=lambda m: m.sim_time > 1.0)
+            # Nobody asks for a wrench yet: none is measured (lazily).
+            self.assertIn('wrench', s.skipped_stages)
+            self.assertFalse(s.wrench_tracked)
         finally:
             stats.close()
 
@@ -91,6 +98,11 @@ class RobotSolidsTest(unittest.TestCase):
         cubes = [m for m in probe_markers(markers) if m.type == Marker.CUBE]
         self.assertEqual(len(cubes), 1)
         self.assertAlmostEqual(cubes[0].scale.x, 2 * HALF, places=4)
+        # The link ~robot_link_regex leaves out is no solid: no marker, no wrench topic.
+        self.assertEqual([m for m in markers.markers if m.header.frame_id == 'skipped'], [])
+        topics = [t for t, _ in rospy.get_published_topics(NODE)]
+        self.assertIn(NODE + '/wrench/probe', topics)
+        self.assertNotIn(NODE + '/wrench/skipped', topics)
 
         # The water pushes it up: Archimedes (coarse: 4 particles across it, hence 30 %).
         wrenches = Latest(NODE + '/wrench/probe', WrenchStamped)
@@ -98,11 +110,16 @@ class RobotSolidsTest(unittest.TestCase):
         stats = stats_listener()
         try:
             lift = []
-            deadline = time.time() + 4.0
-            while time.time() < deadline:
+            wrenches.next(timeout=10.0)  # measuring has started
+            start = time.time()
+            while time.time() < start + 4.0:
                 w = wrenches.next(timeout=10.0)
                 self.assertEqual(w.header.frame_id, 'probe')
                 lift.append(w.wrench.force.z)
+            rate = len(lift) / (time.time() - start)
+            rospy.loginfo('~wrench/probe at %.1f Hz (~wrench_rate 10)', rate)
+            self.assertGreater(rate, 5.0)
+            self.assertLess(rate, 12.0)
             buoyancy = RHO_G * (2 * HALF) ** 3
             mean_lift = sum(lift) / len(lift)
             rospy.loginfo('probe lift %.2f N vs rho0 g V %.2f N', mean_lift, buoyancy)
@@ -153,6 +170,14 @@ class RobotSolidsTest(unittest.TestCase):
             self.assertGreater(s.particle_count, 500)
         finally:
             stats.close()
+
+        # A scene switch (dynamic_reconfigure) reads the URDF again too: the probe is back.
+        rospy.set_param('/robot_description', urdf)
+        scene = os.path.join(rospkg.RosPack().get_path('pbf_ros'), 'test', 'scenes', 'coarse_tank.yaml')
+        dynamic_reconfigure.client.Client(NODE, timeout=10.0).update_configuration({'scene': scene})
+        markers = marker_topic.current_or_next(
+            timeout=20.0, condition=lambda m: any(p.type == Marker.CUBE for p in probe_markers(m)))
+        self.assertEqual([m.type for m in probe_markers(markers)], [Marker.CUBE])
 
 
 if __name__ == '__main__':

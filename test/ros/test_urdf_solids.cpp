@@ -168,6 +168,24 @@ TEST(UrdfSolids, AMeshLinkGetsAScaledSignedDistanceGridSharedWithItsTwins) {
   EXPECT_LT(n.z(), -0.999f);
 }
 
+TEST(UrdfSolids, AColladaMeshIsReadLikeAnStl) {
+  // DAE through the same reader (geometric_shapes -> assimp): a closed 10 x 6 x 4 cm box.
+  const std::string dae = "file://" + kSource + "/test/data/unit_box.dae";
+  const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(
+      robot(link("block", collision(meshGeometry(dae), "<origin xyz=\"0 0 0.1\"/>"))), options());
+  EXPECT_EQ(s.problems.size(), 0u) << joined(s.problems);
+  ASSERT_EQ(s.solids.size(), 1u);
+  const pbf::Obstacle& o = s.solids[0].obstacle;
+  ASSERT_EQ(o.shape, pbf::Obstacle::Shape::Mesh);
+  EXPECT_EQ(o.sdf->mesh().triangles.size(), 12u);
+  EXPECT_EQ(o.sdf->mesh().openEdges(), 0u);
+  EXPECT_NEAR(std::abs(o.sdf->mesh().signedVolume()), 0.1 * 0.06 * 0.04, 1e-8);
+  Eigen::Vector3f n;  // in the link frame: the box sits 0.1 m up, its top face 2 cm above that
+  EXPECT_NEAR(o.signedDistance(Eigen::Vector3f(0.0f, 0.0f, 0.1f + 0.02f + 0.01f), n), 0.01f, 1e-4f);
+  EXPECT_GT(n.z(), 0.999f);
+  EXPECT_NEAR(o.signedDistance(Eigen::Vector3f(0.0f, 0.0f, 0.1f), n), -0.02f, 0.5f * 0.005f);
+}
+
 TEST(UrdfSolids, AMissingOrDegenerateMeshIsReportedAndTheRestStays) {
   const std::string flat = "file://" + kSource + "/test/data/flat_square.stl";
   const std::string urdf = robot(
