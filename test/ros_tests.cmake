@@ -15,6 +15,7 @@ catkin_add_gtest(test_ros_units
   test/ros/test_scene_markers.cpp
   test/ros/test_snapshot_buffer.cpp
   test/ros/test_stats_and_health.cpp
+  test/ros/test_tf_attachments.cpp
   test/ros/test_tf_stamp_gate.cpp
   test/ros/test_wrench_targets.cpp)
 if(TARGET test_ros_units)

@@ -24,9 +24,12 @@ bool TfAttachments::needed(const pbf::Scene& scene) {
                      [](const pbf::FluidBlock& b) { return !b.frame.empty(); });
 }
 
+TfAttachments::TfAttachments(std::string domain_frame, std::shared_ptr<tf2_ros::Buffer> buffer)
+    : domain_frame_(std::move(domain_frame)), started_(ros::WallTime::now()), buffer_(std::move(buffer)) {}
+
 void TfAttachments::listen() {
-  if (listener_) return;
-  buffer_ = std::make_unique<tf2_ros::Buffer>();
+  if (buffer_) return;
+  buffer_ = std::make_shared<tf2_ros::Buffer>();
   listener_ = std::make_unique<tf2_ros::TransformListener>(*buffer_);
 }
 

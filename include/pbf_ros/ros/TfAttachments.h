@@ -19,6 +19,9 @@ namespace pbf_ros {
 class TfAttachments {
  public:
   explicit TfAttachments(std::string domain_frame);
+  // Reads `buffer`, filled by the caller, instead of subscribing to /tf (unit tests: no
+  // master needed).
+  TfAttachments(std::string domain_frame, std::shared_ptr<tf2_ros::Buffer> buffer);
 
   // True when the scene attaches anything to a tf frame (no tf work otherwise).
   static bool needed(const pbf::Scene& scene);
@@ -40,13 +43,13 @@ class TfAttachments {
   void restart();
 
  private:
-  void listen();  // subscribes to /tf once a scene needs it
+  void listen();  // subscribes to /tf once a scene needs it (unless given a buffer)
   bool lookup(const std::string& frame, const ros::Time& time, double max_wait,
               Eigen::Isometry3f& pose) const;
 
   std::string domain_frame_;
   ros::WallTime started_;
-  std::unique_ptr<tf2_ros::Buffer> buffer_;
+  std::shared_ptr<tf2_ros::Buffer> buffer_;
   std::unique_ptr<tf2_ros::TransformListener> listener_;  // created on first use
 };
 
