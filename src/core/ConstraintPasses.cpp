@@ -52,7 +52,7 @@ Eigen::Vector3f PbfSolver::pairGradient(std::size_t i, std::uint32_t j) const {
   return spikyGradientSafe(k, p, id_[i], id_[j]);
 }
 
-void PbfSolver::computeLambdas(float& avg_error) {
+void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   const std::size_t n = size();
   const Kernels k(params_.supportRadius());
   const std::uint32_t* off = grid_->offsets().data();
@@ -99,6 +99,10 @@ void PbfSolver::computeLambdas(float& avg_error) {
       wall_gradient_[i] = gw;  // the delta-p pass sees the same position
     }
     density_[i] = rho;
+    if (pass == LambdaPass::kWarmStart) {  // lambda_sum_ holds the warm start (<= 0)
+      lambda_[i] = lambda_sum_[i];
+      continue;
+    }
     float c = rho * inv_rho0 - 1.0f;
     if (unilateral) c = std::max(c, 0.0f);
     const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
@@ -179,7 +183,7 @@ void PbfSolver::computeScorrScales(const Scorr& scorr) {
   }
 }
 
-void PbfSolver::computeDeltas() {
+void PbfSolver::computeDeltas(LambdaPass pass) {
   const std::size_t n = size();
   const Kernels k(params_.supportRadius());
   const std::uint32_t* off = grid_->offsets().data();
@@ -190,7 +194,9 @@ void PbfSolver::computeDeltas() {
   const float grad_scale = params_.densityMass() / params_.rest_density;
   const float tiny2 = kCoincident * k.h2;
   // With k = 0 the loop without s_corr runs: no cost.
-  const Scorr scorr(params_, k, current_dt_);
+  Scorr scorr(params_, k, current_dt_);
+  scorr.on = scorr.on && pass == LambdaPass::kNewton;  // the warm start re-applies no s_corr
+  const bool sum_lambda = pass == LambdaPass::kNewton;  // the warm start is already summed
   if (scorr.on) computeScorrScales(scorr);
   const float* S = scorr.on ? scorr_scale_.data() : nullptr;
   const NeighborArrays arrays{P, off, nbr};
@@ -231,6 +237,7 @@ void PbfSolver::computeDeltas() {
       }
     }
     delta_[i] = dp;
+    if (sum_lambda) lambda_sum_[i] += li;
     if (walls) delta_[i] += li * wall_gradient_[i];  // lambda_i times the solids' part of grad_i C_i
   }
   if (track_wrenches_ && walls) recordBoundaryDensityPush(boundaries());

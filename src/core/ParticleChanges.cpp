@@ -35,6 +35,7 @@ std::uint32_t PbfSolver::addParticles(const std::vector<Eigen::Vector3f>& positi
   delta_.resize(n, Eigen::Vector3f::Zero());
   new_velocity_.resize(n, Eigen::Vector3f::Zero());
   lambda_.resize(n, 0.0f);
+  lambda_sum_.resize(n, 0.0f);  // no pressure of their own yet: the first solve gives it
   lists_valid_ = false;
   return first;
 }
@@ -53,6 +54,7 @@ std::size_t PbfSolver::removeParticles(const std::vector<std::uint8_t>& remove) 
       id_[kept] = id_[i];
       density_[kept] = density_[i];
       neighbor_count_[kept] = neighbor_count_[i];
+      lambda_sum_[kept] = lambda_sum_[i];
     }
     ++kept;
   }
@@ -67,6 +69,7 @@ std::size_t PbfSolver::removeParticles(const std::vector<std::uint8_t>& remove) 
   delta_.resize(kept);
   new_velocity_.resize(kept);
   lambda_.resize(kept);
+  lambda_sum_.resize(kept);
   lists_valid_ = false;
   return removed;
 }

@@ -20,6 +20,16 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+// The warm start applies half of the previous step's summed multiplier, as IISPH starts
+// from half the previous pressure (Ihmsen et al. 2014). Not all of it: the Jacobi passes
+// correct only compression and overlap (neighbours' corrections add up), so their sum
+// overshoots the pressure that holds the fluid; applied in full, that surplus has no pass
+// to take it back and becomes velocity (a resting tank's level rose by 100 %). Letting
+// later passes take back a push (a projected, bilateral-within-the-step multiplier) made
+// the Jacobi iteration oscillate instead, unless damped so much that it lost more than the
+// warm start gained (README "Warm start").
+constexpr float kWarmStartFraction = 0.5f;
+
 }  // namespace
 
 PbfSolver::PbfSolver()
@@ -32,8 +42,14 @@ void PbfSolver::setParams(const SolverParams& params) {
   if (!err.empty()) throw std::invalid_argument("solver parameter: " + err);
   const bool radius_changed = params.supportRadius() != params_.supportRadius() ||
                               params.neighbor_skin != params_.neighbor_skin;
+  // The kept multipliers carry the constraint's units (m^2 through m / rho0 and h): they
+  // mean nothing for another mass, spacing or kernel.
+  const bool constraint_scale_changed = radius_changed ||
+                                        params.densityMass() != params_.densityMass() ||
+                                        params.rest_density != params_.rest_density;
   params_ = params;
   if (radius_changed) lists_valid_ = false;
+  if (constraint_scale_changed) lambda_sum_dt_ = 0.0f;
   if (lattice_->spacing() != params_.particle_spacing ||
       lattice_->supportRadius() != params_.supportRadius())
     lattice_ = std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius());
@@ -88,6 +104,8 @@ void PbfSolver::setParticles(const std::vector<Eigen::Vector3f>& positions,
   delta_.assign(n, Eigen::Vector3f::Zero());
   new_velocity_.assign(n, Eigen::Vector3f::Zero());
   lambda_.assign(n, 0.0f);
+  lambda_sum_.assign(n, 0.0f);
+  lambda_sum_dt_ = 0.0f;  // no pressure yet to start from
   density_.assign(n, params_.rest_density);
   neighbor_count_.assign(n, 0);
   lists_valid_ = false;
@@ -129,6 +147,7 @@ StepStats PbfSolver::stepWith(float dt) {
   saved_id_ = id_;
   saved_density_ = density_;
   saved_neighbor_count_ = neighbor_count_;
+  saved_lambda_sum_ = lambda_sum_;
   bool ok = false;
   for (int attempt = 0; attempt <= params_.max_nan_retries; ++attempt) {
     StepStats trial = stats;
@@ -143,6 +162,7 @@ StepStats PbfSolver::stepWith(float dt) {
     id_ = saved_id_;
     density_ = saved_density_;
     neighbor_count_ = saved_neighbor_count_;
+    lambda_sum_ = saved_lambda_sum_;
     lists_valid_ = false;
     ++stats.nan_retries;
     dt *= 0.5f;
@@ -158,6 +178,7 @@ StepStats PbfSolver::stepWith(float dt) {
                                       container_pose_.translation().cast<double>(), obstacles_);
     time_ += stats.dt;
     ++step_count_;
+    lambda_sum_dt_ = static_cast<float>(stats.dt);
     // The boundaries have now reached the poses set for this step.
     prev_container_pose_ = container_pose_;
     for (std::size_t k = 0; k < obstacles_.size(); ++k) prev_obstacle_pose_[k] = obstacles_[k].pose;
@@ -209,6 +230,24 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   t = Clock::now();
   const bool use_tolerance = params_.density_tolerance > 0.0f;
   int iter = 0;
+  stats.warm_started = prepareWarmStart(dt);
+  if (stats.warm_started) {
+    // The previous step's pressure, applied with this step's gradients: the one correction
+    // a Jacobi step cannot make itself, because it spreads only one neighbourhood per
+    // iteration (a column's hydrostatic pressure takes many).
+    float avg_error = 0.0f;
+    computeLambdas(avg_error, LambdaPass::kWarmStart);
+    if (!std::isfinite(avg_error)) return false;
+    stats.initial_density_error = avg_error;
+    computeDeltas(LambdaPass::kWarmStart);
+    applyDeltasAndBoundary();
+    ++iter;
+    try {
+      keepListsValidFor(predicted_, stats);
+    } catch (const std::length_error&) {
+      return false;
+    }
+  }
   while (iter < params_.max_iterations) {
     float avg_error = 0.0f;
     computeLambdas(avg_error);
@@ -255,6 +294,20 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   if (finite) gatherStats(stats);
   stats.times.other_ms += msSince(t);
   return finite;
+}
+
+bool PbfSolver::prepareWarmStart(float dt) {
+  const bool warm = params_.warm_start && lambda_sum_dt_ > 0.0f && params_.max_iterations > 0;
+  if (!warm) {
+    std::fill(lambda_sum_.begin(), lambda_sum_.end(), 0.0f);
+    return false;
+  }
+  // lambda is a position-level multiplier: the pressure it stands for is lambda / dt^2.
+  const float ratio = dt / lambda_sum_dt_;
+  const float scale = kWarmStartFraction * ratio * ratio;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < lambda_sum_.size(); ++i) lambda_sum_[i] *= scale;
+  return true;
 }
 
 bool PbfSolver::predict(float dt) {

@@ -25,6 +25,7 @@ void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
   permute(velocity_, reorder_scratch_);
   permute(predicted_, reorder_scratch_);
   permute(id_, reorder_id_scratch_);
+  permute(lambda_sum_, reorder_float_scratch_);  // the warm start follows its particle
 }
 
 // Reused lists stay exact while every particle is within half the skin of where it was at

@@ -107,9 +107,16 @@ class PbfSolver {
   void rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points);
   bool listsStillValidFor(const std::vector<Eigen::Vector3f>& points) const;
   void keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats);
-  void computeLambdas(float& avg_error);
+  // Measures the density at the predicted positions and sets each particle's multiplier
+  // for the next delta-p pass: eq 11's (the warm start pass: the kept one instead).
+  enum class LambdaPass { kNewton, kWarmStart };
+  void computeLambdas(float& avg_error, LambdaPass pass = LambdaPass::kNewton);
+  // Scales (or clears) the multipliers kept from the last step for a step of dt; true when
+  // the solve is to start from them.
+  bool prepareWarmStart(float dt);
   struct Scorr;
-  void computeDeltas();
+  // Delta p from the multipliers of the pass; a Newton pass adds them to lambda_sum_.
+  void computeDeltas(LambdaPass pass = LambdaPass::kNewton);
   void computeScorrScales(const Scorr& scorr);
   Eigen::Vector3f pairGradient(std::size_t i, std::uint32_t j) const;  // grad_i W, exact path
   void applyDeltasAndBoundary();
@@ -148,7 +155,11 @@ class PbfSolver {
   std::vector<Eigen::Vector3f> vorticity_;
   std::vector<float> vorticity_norm_;        // |omega| per particle (confinement)
   std::vector<Eigen::Vector3f> build_position_;  // positions at the last list build (skin)
-  std::vector<float> lambda_;
+  std::vector<float> lambda_;                // multiplier applied by the next delta-p pass
+  // Sum of the multipliers applied so far in this step (kept by each particle across steps:
+  // the warm start of the next).
+  std::vector<float> lambda_sum_;
+  float lambda_sum_dt_ = 0.0f;               // dt of the step lambda_sum_ belongs to
   std::vector<float> scorr_scale_;          // per particle bound of the s_corr push
   std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass
   std::vector<Eigen::Vector3f> wall_gradient_;  // solids' part of grad C, lambda -> delta p
@@ -157,11 +168,12 @@ class PbfSolver {
   // Backups to reject a non-finite step: everything a step changes.
   std::vector<Eigen::Vector3f> saved_position_, saved_velocity_;
   std::vector<std::uint32_t> saved_id_;
-  std::vector<float> saved_density_;
+  std::vector<float> saved_density_, saved_lambda_sum_;
   std::vector<std::uint16_t> saved_neighbor_count_;
   // Scratch for reorder() (swapped with the arrays it permutes).
   std::vector<Eigen::Vector3f> reorder_scratch_;
   std::vector<std::uint32_t> reorder_id_scratch_;
+  std::vector<float> reorder_float_scratch_;
 
   std::unique_ptr<NeighborGrid> grid_;
   std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h

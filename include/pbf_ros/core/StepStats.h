@@ -19,7 +19,8 @@ struct StageTimes {
 struct StepStats {
   std::uint32_t particle_count = 0;
   double dt = 0.0;                       // time step actually taken [s]
-  int iterations = 0;                    // constraint iterations used
+  int iterations = 0;                    // constraint iterations used (a warm start is one)
+  bool warm_started = false;             // the solve began from the previous step's pressure
   double avg_density_error = 0.0;        // mean of max(rho/rho0 - 1, 0) after the step
   double max_density_error = 0.0;        // max of rho/rho0 - 1 after the step
   double max_speed = 0.0;                // [m/s]
