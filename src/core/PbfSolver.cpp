@@ -27,7 +27,7 @@ double msSince(Clock::time_point t0) {
 // to take it back and becomes velocity (a resting tank's level rose by 100 %). Letting
 // later passes take back a push (a projected, bilateral-within-the-step multiplier) made
 // the Jacobi iteration oscillate instead, unless damped so much that it lost more than the
-// warm start gained (README "Warm start").
+// warm start gained (README "Calibration", warm start).
 constexpr float kWarmStartFraction = 0.5f;
 
 }  // namespace
