@@ -231,31 +231,20 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   const bool use_tolerance = params_.density_tolerance > 0.0f;
   int iter = 0;
   stats.warm_started = prepareWarmStart(dt);
-  if (stats.warm_started) {
-    // The previous step's pressure, applied with this step's gradients: the one correction
-    // a Jacobi step cannot make itself, because it spreads only one neighbourhood per
-    // iteration (a column's hydrostatic pressure takes many).
-    float avg_error = 0.0f;
-    computeLambdas(avg_error, LambdaPass::kWarmStart);
-    if (!std::isfinite(avg_error)) return false;
-    stats.initial_density_error = avg_error;
-    computeDeltas(LambdaPass::kWarmStart);
-    applyDeltasAndBoundary();
-    ++iter;
-    try {
-      keepListsValidFor(predicted_, stats);
-    } catch (const std::length_error&) {
-      return false;
-    }
-  }
   while (iter < params_.max_iterations) {
+    // With a warm start the first correction applies the previous step's pressure with this
+    // step's gradients: the one correction a Jacobi step cannot make itself, because it
+    // spreads only one neighbourhood per iteration (a column's hydrostatic pressure takes many).
+    const LambdaPass pass =
+        iter == 0 && stats.warm_started ? LambdaPass::kWarmStart : LambdaPass::kNewton;
     float avg_error = 0.0f;
-    computeLambdas(avg_error);
+    computeLambdas(avg_error, pass);
     if (!std::isfinite(avg_error)) return false;
     if (iter == 0) stats.initial_density_error = avg_error;
-    if (use_tolerance && iter >= params_.min_iterations && avg_error <= params_.density_tolerance)
+    if (pass == LambdaPass::kNewton && use_tolerance && iter >= params_.min_iterations &&
+        avg_error <= params_.density_tolerance)
       break;
-    computeDeltas();
+    computeDeltas(pass);
     applyDeltasAndBoundary();
     ++iter;
     try {
