@@ -23,9 +23,10 @@ Follows /clock (the demo's node publishes it). Each joint state is stamped ~look
 of the clock (the trajectory is known in advance, like a controller's set point): the node
 looks the links up at each step's time and finds tf already there to interpolate, instead
 of waiting up to 20 ms per step for the round trip through robot_state_publisher. Before /clock runs, the node waits for the
-arm's tf to place its links: the start pose is published then, once and latched, stamped
-at ~startup_stamp (default 0.02 s, robot_state_publisher's publish interval: it skips
-stamps closer than that to the last one it published, which starts at 0).
+arm's tf to place its links: the start pose is published then, latched, stamped at
+~startup_stamp (default 0.02 s, robot_state_publisher's publish interval: it skips stamps
+closer than that to the last one it published, which starts at 0), and offered again every
+0.1 s of wall time until /clock runs (see STARTUP_REPEAT).
 """
 import math
 import threading
@@ -38,6 +39,11 @@ from sensor_msgs.msg import JointState
 UPPER_ARM, FOREARM = 0.22, 0.18  # shoulder -> elbow -> wrist [m], from the URDF
 JOINTS = ('shoulder', 'elbow', 'wrist')
 LIMITS = (1.8, 2.4, 2.6)         # the URDF's |joint| limits [rad]
+# [wall s] Before /clock runs, the start pose goes out again this often. Latching reaches a
+# late robot_state_publisher, but its tf (on /tf, not latched) went out once: a tf listener
+# that subscribed after it, such as the fluid node's when it starts a few tenths of a second
+# later than this script, never saw the arm and left its links out after ~robot_tf_wait.
+STARTUP_REPEAT = 0.1
 
 # Fill under the tap (0.3 - 0.6 s), let the water settle and hold still (to 2.2 s), carry the
 # upright cup over the basin (to 3.0 s), tip it (to 4.0 s) and hold it tipped.
@@ -133,10 +139,19 @@ def main():
     rospy.Subscriber(rospy.get_param('~stats', '/fluid/stats'), SimulationStats,
                      fluid_time.on_stats, queue_size=1)
     pub = rospy.Publisher('joint_states', JointState, queue_size=10, latch=True)
-    pub.publish(message(rospy.Time.from_sec(startup_stamp),
-                        inverse_kinematics(*cup_at(keyframes, 0.0))))
-    # Wall-clock waits: simulated time does not move before /clock does.
+    start = inverse_kinematics(*cup_at(keyframes, 0.0))
+    # Wall-clock waits: simulated time does not move before /clock does. Each repeat of the
+    # start pose is 1 ns later than the one before: robot_state_publisher publishes it (before
+    # /clock it compares stamps with 0), and tf2 listeners that have the earlier one keep it
+    # instead of refusing the same stamp again (TF_REPEATED_DATA). A day of waiting adds < 1 ms.
+    repeats = 0
+    next_offer = time.monotonic()
     while not rospy.is_shutdown() and rospy.Time.now().is_zero():
+        if time.monotonic() >= next_offer:
+            stamp = rospy.Time.from_sec(startup_stamp) + rospy.Duration(0, repeats)
+            pub.publish(message(stamp, start))
+            repeats += 1
+            next_offer = time.monotonic() + STARTUP_REPEAT
         time.sleep(0.02)
     last = None
     while not rospy.is_shutdown():

@@ -38,6 +38,8 @@ add_rostest(test/robot_solids.test DEPENDENCIES pbf_node)
 add_rostest(test/floating_bodies.test DEPENDENCIES pbf_node)
 add_rostest(test/sources_and_drains.test DEPENDENCIES pbf_node)
 add_rostest(test/robot_pouring.test DEPENDENCIES pbf_node)
+# The pouring arm's start pose reaches a late tf listener before /clock runs (no fluid node).
+add_rostest(test/pouring_startup_tf.test)
 add_rostest(test/obstacle_mover.test DEPENDENCIES pbf_node)
 add_rostest(test/paused_tf.test DEPENDENCIES pbf_node)
 # The nodelet in a manager beside depth_image_proc's point_cloud_xyzrgb.
