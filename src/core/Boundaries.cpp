@@ -21,15 +21,13 @@ struct AxisTerms {
 
 // sum over one term per axis of (product of signs) * T(args): the ghost sum over the
 // product of the per-axis sets (inclusion-exclusion), and its gradient in the box frame.
-// With skip_first, the combination of every axis's first term is left out.
-void sumOctants(const LatticeBoundary& lattice, const AxisTerms (&axes)[3], bool skip_first,
-                float& value, Eigen::Vector3f& gradient) {
+void sumOctants(const LatticeBoundary& lattice, const AxisTerms (&axes)[3], float& value,
+                Eigen::Vector3f& gradient) {
   value = 0.0f;
   gradient.setZero();
   for (int i = 0; i < axes[0].count; ++i)
     for (int j = 0; j < axes[1].count; ++j)
       for (int k = 0; k < axes[2].count; ++k) {
-        if (skip_first && i == 0 && j == 0 && k == 0) continue;
         const LineTerm* t[3] = {&axes[0].term[i], &axes[1].term[j], &axes[2].term[k]};
         float v;
         Eigen::Vector3f dv;
@@ -90,15 +88,6 @@ void SolidBoundaries::keepOnlyObstaclesNear(const Eigen::AlignedBox3f& fluid) {
 bool SolidBoundaries::density(const Eigen::Vector3f& p, float& fraction,
                               Eigen::Vector3f& gradient) const {
   bool near = false;
-  if (has_container_) {
-    float f = 0.0f;
-    Eigen::Vector3f g;
-    if (containerDensity(posed_ ? Eigen::Vector3f(inverse_ * p) : p, f, g)) {
-      fraction += f;
-      gradient += posed_ ? Eigen::Vector3f(pose_.linear() * g) : g;
-      near = true;
-    }
-  }
   for (const std::uint32_t k : near_) {
     const Obstacle& o = (*obstacles_)[k];
     if ((p - o.pose.translation()).squaredNorm() > std::pow(o.boundingRadius() + reach_, 2.0f)) continue;
@@ -107,27 +96,6 @@ bool SolidBoundaries::density(const Eigen::Vector3f& p, float& fraction,
     near = near || hit;
   }
   return near;
-}
-
-// The ghost fluid of the container is everything outside the box: 1 minus the lattice
-// inside it. Inside, each axis is the whole line minus the half-lines beyond its two walls.
-bool SolidBoundaries::containerDensity(const Eigen::Vector3f& q, float& fraction,
-                                       Eigen::Vector3f& gradient) const {
-  AxisTerms axes[3];
-  bool near = false;
-  for (int a = 0; a < 3; ++a) {
-    axes[a].add(lattice_->fullLine(), 1.0f, 0.0f);
-    const float to_min = q[a] - box_.min()[a], to_max = box_.max()[a] - q[a];
-    if (to_min < reach_) axes[a].add(to_min, -1.0f, 1.0f), near = true;
-    if (to_max < reach_) axes[a].add(to_max, -1.0f, -1.0f), near = true;
-  }
-  if (!near) return false;
-  float inside_missing;
-  Eigen::Vector3f g;
-  sumOctants(*lattice_, axes, /*skip_first=*/true, inside_missing, g);
-  fraction = -inside_missing;
-  gradient = -g;
-  return true;
 }
 
 // A box obstacle is ghost fluid inside it: per axis, the half-line beyond the near face
@@ -147,7 +115,7 @@ bool SolidBoundaries::boxDensity(const Obstacle& o, const Eigen::Vector3f& p, fl
   }
   float f;
   Eigen::Vector3f g;
-  sumOctants(*lattice_, axes, /*skip_first=*/false, f, g);
+  sumOctants(*lattice_, axes, f, g);
   if (f == 0.0f) return false;
   fraction += f;
   gradient += o.pose.linear() * g;

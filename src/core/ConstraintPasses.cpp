@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ContainerMirror.h"
 #include "DeterministicSum.h"
 #include "NeighborSums.h"
 #include "PairGeometry.h"
@@ -69,6 +70,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
                          grad_scale * k.spiky_grad_coef, kCoincident * k.h2};
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
+  const ContainerMirror images = containerMirror();
   // The delta-p pass of this iteration sees the same positions: it reuses each pair's
   // gradient factor instead of another sqrt and division.
   pair_gradient_.resize(grid_->indices().size());
@@ -89,7 +91,23 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       }
       gx = gi.x(), gy = gi.y(), gz = gi.z();
     }
-    if (walls) {  // solids do not move with the solve: they add to grad_i C only
+    // The container's images: neighbours like any other (grad_j C_i of an image has the
+    // length of the pair's gradient); i's own image moves with i, so their distance changes
+    // twice as fast.
+    Reflection refl[ContainerMirror::kMaxReflections];
+    const int reflections = images.reflections(predicted_[i], refl);
+    for (int q = 0; q < reflections; ++q) {
+      const LambdaSums m = imageLambdaSums(arrays, pc, i, refl[q]);
+      rho += m.rho, gx += m.gx, gy += m.gy, gz += m.gz, sum_grad2 += m.sum_grad2;
+      const Eigen::Vector3f r = ContainerMirror::imageOffset(refl[q], P, i, i);
+      const float rlen = r.norm();
+      if (rlen >= k.h) continue;
+      rho += mass * k.spiky(rlen);
+      if (rlen <= 0.0f) continue;
+      const Eigen::Vector3f g = 2.0f * grad_scale * k.spikyGradient(r, rlen);
+      gx += g.x(), gy += g.y(), gz += g.z();
+    }
+    if (walls) {  // obstacles do not move with the solve: they add to grad_i C only
       float fraction = 0.0f;
       Eigen::Vector3f gw = Eigen::Vector3f::Zero();
       if (solids.density(predicted_[i], fraction, gw)) {
@@ -201,6 +219,8 @@ void PbfSolver::computeDeltas(LambdaPass pass) {
   const float* S = scorr.on ? scorr_scale_.data() : nullptr;
   const NeighborArrays arrays{P, off, nbr};
   const bool walls = params_.wall_density;
+  const ContainerMirror images = containerMirror();
+  const PairConstants image_pc{k.h, k.h2, 0.0f, 0.0f, grad_scale * k.spiky_grad_coef, tiny2};
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -236,11 +256,37 @@ void PbfSolver::computeDeltas(LambdaPass pass) {
         dp += factor * grad_scale * pairGradient(i, j);
       }
     }
+    dp += imagePush(images, arrays, image_pc, i);
     delta_[i] = dp;
     if (sum_lambda) lambda_sum_[i] += li;
     if (walls) delta_[i] += li * wall_gradient_[i];  // lambda_i times the solids' part of grad_i C_i
   }
   if (track_wrenches_ && walls) recordBoundaryDensityPush(boundaries());
+}
+
+// The delta-p of particle i from the container's images: (lambda_i + lambda_j) grad W per
+// image pair, as for any pair; i's own image pushes with 2 lambda_i. s_corr has no images.
+Eigen::Vector3f PbfSolver::imagePush(const ContainerMirror& images, const NeighborArrays& arrays,
+                                     const PairConstants& pc, std::size_t i) const {
+  Reflection refl[ContainerMirror::kMaxReflections];
+  const int reflections = images.reflections(predicted_[i], refl);
+  if (reflections == 0) return Eigen::Vector3f::Zero();
+  const float* P = arrays.position;
+  const float h = pc.h, spiky = pc.spiky;
+  Eigen::Vector3f push = Eigen::Vector3f::Zero();
+  for (int q = 0; q < reflections; ++q) {
+    const VectorSum s = imageDeltaSums(arrays, pc, i, refl[q], lambda_.data());
+    push += Eigen::Vector3f(s.x, s.y, s.z);
+    const Eigen::Vector3f r = ContainerMirror::imageOffset(refl[q], P, i, i);
+    const float rlen = r.norm();
+    if (rlen > 0.0f && rlen < h) push += (2.0f * lambda_[i] * spiky * (h - rlen) * (h - rlen) / rlen) * r;
+  }
+  return push;
+}
+
+ContainerMirror PbfSolver::containerMirror() const {
+  return ContainerMirror(params_.wall_density ? container_ : Eigen::AlignedBox3f(), container_pose_,
+                         params_.supportRadius(), 0.5f * params_.particle_spacing);
 }
 
 SolidBoundaries PbfSolver::boundaries() const {

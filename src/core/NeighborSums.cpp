@@ -116,5 +116,98 @@ VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t 
   return {sx, sy, sz, 0};
 }
 
+// The image sums: the loops above with x_j replaced by its mirror image m x_j + b.
+LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                           const Reflection& r) {
+  const float* P = a.position;
+  const std::uint32_t* nbr = a.index;
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+  const float m0 = r.m[0], m1 = r.m[1], m2 = r.m[2], m3 = r.m[3], m4 = r.m[4], m5 = r.m[5],
+              m6 = r.m[6], m7 = r.m[7], m8 = r.m[8];
+  const float bx = xi - r.b[0], by = yi - r.b[1], bz = zi - r.b[2];
+  const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
+  float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
+  int coincident = 0;
+#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
+  for (std::size_t e = begin; e < end; ++e) {
+    const std::uint32_t j = nbr[e];
+    const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
+    const float dx = bx - (m0 * x + m1 * y + m2 * z);
+    const float dy = by - (m3 * x + m4 * y + m5 * z);
+    const float dz = bz - (m6 * x + m7 * y + m8 * z);
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float rlen = std::sqrt(r2);
+    const float dl = std::max(h - rlen, 0.0f);
+    rho += density * dl * dl * dl;
+    const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
+    coincident += r2 <= tiny2 ? 1 : 0;
+    gx += g * dx;
+    gy += g * dy;
+    gz += g * dz;
+    sum_grad2 += g * g * r2;
+  }
+  return {rho, gx, gy, gz, sum_grad2, coincident};
+}
+
+VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                         const Reflection& r, const float* lambda) {
+  const float* P = a.position;
+  const std::uint32_t* nbr = a.index;
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+  const float m0 = r.m[0], m1 = r.m[1], m2 = r.m[2], m3 = r.m[3], m4 = r.m[4], m5 = r.m[5],
+              m6 = r.m[6], m7 = r.m[7], m8 = r.m[8];
+  const float bx = xi - r.b[0], by = yi - r.b[1], bz = zi - r.b[2];
+  const float h = k.h, spiky = k.spiky, tiny2 = k.coincident2;
+  const float li = lambda[i];
+  float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+  int coincident = 0;
+#pragma omp simd reduction(+ : sx, sy, sz, coincident)
+  for (std::size_t e = begin; e < end; ++e) {
+    const std::uint32_t j = nbr[e];
+    const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
+    const float dx = bx - (m0 * x + m1 * y + m2 * z);
+    const float dy = by - (m3 * x + m4 * y + m5 * z);
+    const float dz = bz - (m6 * x + m7 * y + m8 * z);
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float rlen = std::sqrt(r2);
+    const float dl = std::max(h - rlen, 0.0f);
+    const float g = r2 > tiny2 ? (li + lambda[j]) * spiky * dl * dl / rlen : 0.0f;
+    coincident += r2 <= tiny2 ? 1 : 0;
+    sx += g * dx;
+    sy += g * dy;
+    sz += g * dz;
+  }
+  return {sx, sy, sz, coincident};
+}
+
+DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                            const Reflection& r) {
+  const float* P = a.position;
+  const std::uint32_t* nbr = a.index;
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+  const float m0 = r.m[0], m1 = r.m[1], m2 = r.m[2], m3 = r.m[3], m4 = r.m[4], m5 = r.m[5],
+              m6 = r.m[6], m7 = r.m[7], m8 = r.m[8];
+  const float bx = xi - r.b[0], by = yi - r.b[1], bz = zi - r.b[2];
+  const float h = k.h, h2 = k.h2, density = k.density;
+  float rho = 0.0f;
+  std::uint32_t count = 0;
+#pragma omp simd reduction(+ : rho, count)
+  for (std::size_t e = begin; e < end; ++e) {
+    const std::uint32_t j = nbr[e];
+    const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
+    const float dx = bx - (m0 * x + m1 * y + m2 * z);
+    const float dy = by - (m3 * x + m4 * y + m5 * z);
+    const float dz = bz - (m6 * x + m7 * y + m8 * z);
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float dl = std::max(h - std::sqrt(r2), 0.0f);
+    rho += density * dl * dl * dl;
+    count += r2 < h2 ? 1u : 0u;
+  }
+  return {rho, count};
+}
+
 }  // namespace PBF_NEIGHBOR_SUMS_NS
 }  // namespace pbf

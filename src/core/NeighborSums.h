@@ -60,6 +60,28 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                    const float* velocity, const float* density);
 
+// A mirror image map x -> m x + b (row-major 3x3, world frame) across one, two or three
+// container walls (ContainerMirror.h); `walls` has bit f set for each face f reflected across.
+struct Reflection {
+  float m[9], b[3];
+  int walls;
+};
+
+// lambdaSums over the images of i's neighbours under one reflection (i's own image is left
+// to the caller): density, sum_j grad_i W(x_i - image_j), sum of squared gradients.
+LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                           const Reflection& r);
+
+// sum_j (lambda_i + lambda_j) grad W(x_i - image_j): the images' part of i's correction
+// (i's own image left to the caller). Gradients are recomputed, not cached: few particles
+// are near a wall.
+VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                         const Reflection& r, const float* lambda);
+
+// densitySums over the images of i's neighbours (count: images within h).
+DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                            const Reflection& r);
+
 // Which build of the kernels runs: "x86-64-v3" or "build target".
 const char* neighborSumsVariant();
 
@@ -71,6 +93,12 @@ const char* neighborSumsVariant();
   DensitySum densitySums(const NeighborArrays&, const PairConstants&, std::size_t);           \
   VectorSum xsphSums(const NeighborArrays&, const PairConstants&, std::size_t, const float*,   \
                      const float*);                                                           \
+  LambdaSums imageLambdaSums(const NeighborArrays&, const PairConstants&, std::size_t,         \
+                             const Reflection&);                                              \
+  VectorSum imageDeltaSums(const NeighborArrays&, const PairConstants&, std::size_t,          \
+                           const Reflection&, const float*);                                  \
+  DensitySum imageDensitySums(const NeighborArrays&, const PairConstants&, std::size_t,       \
+                              const Reflection&);                                             \
   }
 PBF_DECLARE_NEIGHBOR_SUMS(neighbor_sums_base)
 PBF_DECLARE_NEIGHBOR_SUMS(neighbor_sums_v3)

@@ -13,6 +13,9 @@ struct NeighborSumsTable {
   decltype(&neighbor_sums_base::deltaSums) delta;
   decltype(&neighbor_sums_base::densitySums) density;
   decltype(&neighbor_sums_base::xsphSums) xsph;
+  decltype(&neighbor_sums_base::imageLambdaSums) image_lambda;
+  decltype(&neighbor_sums_base::imageDeltaSums) image_delta;
+  decltype(&neighbor_sums_base::imageDensitySums) image_density;
   const char* name;
 };
 
@@ -30,10 +33,13 @@ const NeighborSumsTable& table() {
   static const NeighborSumsTable t =
       cpuRunsV3() ? NeighborSumsTable{neighbor_sums_v3::lambdaSums, neighbor_sums_v3::deltaSums,
                                       neighbor_sums_v3::densitySums, neighbor_sums_v3::xsphSums,
-                                      "x86-64-v3"}
+                                      neighbor_sums_v3::imageLambdaSums, neighbor_sums_v3::imageDeltaSums,
+                                      neighbor_sums_v3::imageDensitySums, "x86-64-v3"}
                   : NeighborSumsTable{neighbor_sums_base::lambdaSums, neighbor_sums_base::deltaSums,
                                       neighbor_sums_base::densitySums, neighbor_sums_base::xsphSums,
-                                      "build target"};
+                                      neighbor_sums_base::imageLambdaSums,
+                                      neighbor_sums_base::imageDeltaSums,
+                                      neighbor_sums_base::imageDensitySums, "build target"};
   return t;
 }
 
@@ -56,6 +62,21 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                    const float* velocity, const float* density) {
   return table().xsph(a, k, i, velocity, density);
+}
+
+LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                           const Reflection& r) {
+  return table().image_lambda(a, k, i, r);
+}
+
+VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                         const Reflection& r, const float* lambda) {
+  return table().image_delta(a, k, i, r, lambda);
+}
+
+DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                            const Reflection& r) {
+  return table().image_density(a, k, i, r);
 }
 
 const char* neighborSumsVariant() { return table().name; }

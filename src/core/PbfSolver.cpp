@@ -213,7 +213,13 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
     wrench_sums_.reset(SolidBoundaries::kContainerFaces + obstacles_.size(), omp_get_max_threads());
   auto t = Clock::now();
   const bool predicted_finite = predict(dt);
-  if (predicted_finite) updateFluidReach();
+  if (predicted_finite) {
+    updateFluidReach();
+    // The solve starts inside the solids' bounds, as every later pass sees it: the
+    // container's images (ContainerMirror.h) are only right for particles in front of a wall.
+    std::fill(delta_.begin(), delta_.end(), Eigen::Vector3f::Zero());
+    applyDeltasAndBoundary();
+  }
   stats.times.other_ms += msSince(t);
   if (!predicted_finite) return false;
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ContainerMirror.h"
 #include "NeighborSums.h"
 #include "PairGeometry.h"
 #include "pbf_ros/core/Boundaries.h"
@@ -102,6 +103,7 @@ void PbfSolver::computeDensityAndVorticity() {
   neighbor_count_.resize(n);
   const bool walls = params_.wall_density;
   const SolidBoundaries solids = boundaries();
+  const ContainerMirror images = containerMirror();
 
   const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(),
                              nbr.data()};
@@ -115,10 +117,17 @@ void PbfSolver::computeDensityAndVorticity() {
     const float rho = self_density + s.rho;
     const std::uint32_t count = s.count;
     float wall = 0.0f;
+    Reflection refl[ContainerMirror::kMaxReflections];
+    const int reflections = images.reflections(pi, refl);
+    for (int q = 0; q < reflections; ++q) {
+      wall += imageDensitySums(arrays, pc, i, refl[q]).rho;
+      const float rlen = ContainerMirror::imageOffset(refl[q], arrays.position, i, i).norm();
+      wall += density_mass * k.spiky(rlen);  // zero beyond h
+    }
     if (walls) {
       float fraction = 0.0f;
       Eigen::Vector3f unused = Eigen::Vector3f::Zero();
-      if (solids.density(pi, fraction, unused)) wall = params_.rest_density * fraction;
+      if (solids.density(pi, fraction, unused)) wall += params_.rest_density * fraction;
     }
     density_[i] = rho + wall;
     neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));

@@ -2,11 +2,12 @@
 // Everything solid the fluid meets in one step: the container (a box with a pose in the
 // fluid frame, moved by the node when it is attached to a tf frame) and the obstacles.
 //
-// Solids lend density to the particles near them, as ghost fluid at rest beyond their
-// surface (LatticeBoundary.h): exactly the missing density for a resting lattice at a flat
-// wall, an edge or a corner of the container and of box obstacles; curved obstacles scale
-// the flat-wall value by how much of the kernel the curved solid really covers. They also
-// keep particles out (project), and carry them along by friction (contact).
+// Obstacles lend density to the particles near them, as ghost fluid at rest beyond their
+// surface (LatticeBoundary.h): exactly the missing density for a resting lattice at a face,
+// an edge or a corner of a box obstacle; curved obstacles add to the flat-wall value what
+// their curvature takes away. The container's walls lend through mirror images of the fluid
+// instead, in the solver's passes (src/core/ContainerMirror.h). Container and obstacles
+// keep particles out (project) and carry them along by friction (contact).
 // Built once per pass from the solver's state; cheap to copy.
 
 #include <Eigen/Core>
@@ -26,8 +27,8 @@ class SolidBoundaries {
                   const std::vector<Obstacle>& obstacles, const LatticeBoundary& lattice,
                   float particle_radius);
 
-  // Density fraction (multiply by rho0) lent by walls and obstacles near p, and its
-  // gradient with respect to p. False (nothing added) when no solid is near: the common case.
+  // Density fraction (multiply by rho0) lent by the obstacles near p, and its gradient with
+  // respect to p. False (nothing added) when none is near: the common case.
   bool density(const Eigen::Vector3f& p, float& fraction, Eigen::Vector3f& gradient) const;
 
   // p moved out of every obstacle and into the container, keeping particle_radius from
@@ -51,9 +52,8 @@ class SolidBoundaries {
   static constexpr int kContainerFaces = 6;
   std::size_t solidCount() const { return kContainerFaces + obstacles_->size(); }
 
-  // density()'s gradient split by the solid that lends it: part(solid, gradient) for each
-  // solid near p. The container's gradient is split by axis: each component belongs to the
-  // nearer wall on that axis (exact unless the container is narrower than two kernel reaches).
+  // density()'s gradient split by the obstacle that lends it: part(solid, gradient) for each
+  // obstacle near p (solid numbering above).
   template <typename Part>
   void densityGradientParts(const Eigen::Vector3f& p, Part&& part) const;
 
@@ -72,7 +72,6 @@ class SolidBoundaries {
   void keepOnlyObstaclesNear(const Eigen::AlignedBox3f& fluid);
 
  private:
-  bool containerDensity(const Eigen::Vector3f& q, float& fraction, Eigen::Vector3f& gradient) const;
   bool boxDensity(const Obstacle& o, const Eigen::Vector3f& p, float& fraction,
                   Eigen::Vector3f& gradient) const;
   bool curvedDensity(const Obstacle& o, const Eigen::Vector3f& p, float& fraction,
@@ -120,20 +119,6 @@ Eigen::Vector3f SolidBoundaries::project(const Eigen::Vector3f& p_in, Report&& r
 
 template <typename Part>
 void SolidBoundaries::densityGradientParts(const Eigen::Vector3f& p, Part&& part) const {
-  if (has_container_) {
-    const Eigen::Vector3f q = posed_ ? Eigen::Vector3f(inverse_ * p) : p;
-    float f = 0.0f;
-    Eigen::Vector3f g = Eigen::Vector3f::Zero();
-    if (containerDensity(q, f, g)) {
-      for (int a = 0; a < 3; ++a) {
-        if (g[a] == 0.0f) continue;
-        Eigen::Vector3f axis_part = Eigen::Vector3f::Zero();
-        axis_part[a] = g[a];
-        const bool min_wall = q[a] - box_.min()[a] < box_.max()[a] - q[a];
-        part(2 * a + (min_wall ? 0 : 1), posed_ ? Eigen::Vector3f(pose_.linear() * axis_part) : axis_part);
-      }
-    }
-  }
   for (const std::uint32_t k : near_) {
     const Obstacle& o = (*obstacles_)[k];
     const float r = o.boundingRadius() + reach_;

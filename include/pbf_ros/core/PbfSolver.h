@@ -19,6 +19,9 @@
 
 namespace pbf {
 
+class ContainerMirror;
+struct NeighborArrays;
+struct PairConstants;
 class LatticeBoundary;
 class NeighborGrid;
 class SolidBoundaries;
@@ -122,6 +125,10 @@ class PbfSolver {
   void applyDeltasAndBoundary();
   void updateVelocities(float dt);
   SolidBoundaries boundaries() const;
+  // The container's walls as mirror images (ContainerMirror.h); none without wall density.
+  ContainerMirror containerMirror() const;
+  Eigen::Vector3f imagePush(const ContainerMirror& images, const NeighborArrays& arrays,
+                            const PairConstants& pc, std::size_t i) const;
   // Where the particles can be during the attempt in progress (FluidReach.cpp): obstacles
   // whose reach misses it are left out of every per-particle boundary test.
   void updateFluidReach();
