@@ -79,7 +79,12 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    const LambdaSums s = lambdaSums(arrays, pc, i, G);
+    // The container's images are neighbours like any other (ContainerMirror.h); i's own
+    // images move with i, so their distance changes twice as fast.
+    Reflection refl[ContainerMirror::kMaxReflections];
+    const int reflections = images.reflections(predicted_[i], refl);
+    const LambdaSums s = reflections == 0 ? lambdaSums(arrays, pc, i, G)
+                                          : lambdaSumsWithImages(arrays, pc, i, refl, reflections, G);
     float rho = self_density + s.rho, gx = s.gx, gy = s.gy, gz = s.gz, sum_grad2 = s.sum_grad2;
     if (s.coincident > 0) {  // rare: redo the gradients with directions for coincident pairs
       Eigen::Vector3f gi = Eigen::Vector3f::Zero();
@@ -89,16 +94,14 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
         gi += g;
         sum_grad2 += g.squaredNorm();
       }
+      for (int q = 0; q < reflections; ++q) {  // images as separate neighbours here
+        const LambdaSums m = imageLambdaSums(arrays, pc, i, refl[q]);
+        gi += Eigen::Vector3f(m.gx, m.gy, m.gz);
+        sum_grad2 += m.sum_grad2;
+      }
       gx = gi.x(), gy = gi.y(), gz = gi.z();
     }
-    // The container's images: neighbours like any other (grad_j C_i of an image has the
-    // length of the pair's gradient); i's own image moves with i, so their distance changes
-    // twice as fast.
-    Reflection refl[ContainerMirror::kMaxReflections];
-    const int reflections = images.reflections(predicted_[i], refl);
     for (int q = 0; q < reflections; ++q) {
-      const LambdaSums m = imageLambdaSums(arrays, pc, i, refl[q]);
-      rho += m.rho, gx += m.gx, gy += m.gy, gz += m.gz, sum_grad2 += m.sum_grad2;
       const Eigen::Vector3f r = ContainerMirror::imageOffset(refl[q], P, i, i);
       const float rlen = r.norm();
       if (rlen >= k.h) continue;

@@ -117,6 +117,98 @@ VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t 
 }
 
 // The image sums: the loops above with x_j replaced by its mirror image m x_j + b.
+
+// One reflection (a particle by one wall, the common case): branch-free, vectorised.
+// grad_j C_i = -(g (x_i - x_j) + g' (R x_i - x_j)): the image of j seen from i is the image
+// of i seen from j, R x_i - x_j = m (x_i - R x_j) for a reflection.
+static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                                      const Reflection& r, float* pair_gradient) {
+  const float* P = a.position;
+  const std::uint32_t* nbr = a.index;
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+  const float m0 = r.m[0], m1 = r.m[1], m2 = r.m[2], m3 = r.m[3], m4 = r.m[4], m5 = r.m[5],
+              m6 = r.m[6], m7 = r.m[7], m8 = r.m[8];
+  const float bx = xi - r.b[0], by = yi - r.b[1], bz = zi - r.b[2];
+  const float rix = m0 * xi + m1 * yi + m2 * zi + r.b[0];  // R x_i
+  const float riy = m3 * xi + m4 * yi + m5 * zi + r.b[1];
+  const float riz = m6 * xi + m7 * yi + m8 * zi + r.b[2];
+  const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
+  float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
+  int coincident = 0;
+#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
+  for (std::size_t e = begin; e < end; ++e) {
+    const std::uint32_t j = nbr[e];
+    const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
+    const float dx = xi - x, dy = yi - y, dz = zi - z;
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float rlen = std::sqrt(r2);
+    const float dl = std::max(h - rlen, 0.0f);
+    const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
+    pair_gradient[e] = g;
+    coincident += r2 <= tiny2 ? 1 : 0;
+    const float ex = bx - (m0 * x + m1 * y + m2 * z);
+    const float ey = by - (m3 * x + m4 * y + m5 * z);
+    const float ez = bz - (m6 * x + m7 * y + m8 * z);
+    const float s2 = ex * ex + ey * ey + ez * ez;
+    const float slen = std::sqrt(s2);
+    const float sl = std::max(h - slen, 0.0f);
+    const float gi = s2 > tiny2 ? spiky * sl * sl / slen : 0.0f;
+    rho += density * (dl * dl * dl + sl * sl * sl);
+    gx += g * dx + gi * ex;
+    gy += g * dy + gi * ey;
+    gz += g * dz + gi * ez;
+    const float vx = g * dx + gi * (rix - x), vy = g * dy + gi * (riy - y), vz = g * dz + gi * (riz - z);
+    sum_grad2 += vx * vx + vy * vy + vz * vz;
+  }
+  return {rho, gx, gy, gz, sum_grad2, coincident};
+}
+
+LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                                const Reflection* r, int count, float* pair_gradient) {
+  if (count == 1) return lambdaSumsWithImage(a, k, i, r[0], pair_gradient);
+  // Two or three walls (edges, corners: few particles): the same, scalar over the reflections.
+  const float* P = a.position;
+  const std::uint32_t* nbr = a.index;
+  const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
+  const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+  float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
+  int coincident = 0;
+  for (std::size_t e = a.offset[i]; e < a.offset[i + 1]; ++e) {
+    const std::uint32_t j = nbr[e];
+    const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
+    const float dx = xi - x, dy = yi - y, dz = zi - z;
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float rlen = std::sqrt(r2);
+    const float dl = std::max(h - rlen, 0.0f);
+    const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
+    pair_gradient[e] = g;
+    coincident += r2 <= tiny2 ? 1 : 0;
+    rho += density * dl * dl * dl;
+    gx += g * dx, gy += g * dy, gz += g * dz;
+    float vx = g * dx, vy = g * dy, vz = g * dz;
+    for (int q = 0; q < count; ++q) {
+      const float* m = r[q].m;
+      const float ix = m[0] * x + m[1] * y + m[2] * z + r[q].b[0];  // image of j
+      const float iy = m[3] * x + m[4] * y + m[5] * z + r[q].b[1];
+      const float iz = m[6] * x + m[7] * y + m[8] * z + r[q].b[2];
+      const float ex = xi - ix, ey = yi - iy, ez = zi - iz;
+      const float s2 = ex * ex + ey * ey + ez * ez;
+      if (s2 >= k.h2 || s2 <= tiny2) continue;
+      const float slen = std::sqrt(s2);
+      const float sl = h - slen;
+      const float gi = spiky * sl * sl / slen;
+      rho += density * sl * sl * sl;
+      gx += gi * ex, gy += gi * ey, gz += gi * ez;
+      // R x_i - x_j = m (x_i - image of j)
+      vx += gi * (m[0] * ex + m[1] * ey + m[2] * ez);
+      vy += gi * (m[3] * ex + m[4] * ey + m[5] * ez);
+      vz += gi * (m[6] * ex + m[7] * ey + m[8] * ez);
+    }
+    sum_grad2 += vx * vx + vy * vy + vz * vz;
+  }
+  return {rho, gx, gy, gz, sum_grad2, coincident};
+}
 LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                            const Reflection& r) {
   const float* P = a.position;

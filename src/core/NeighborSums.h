@@ -67,8 +67,16 @@ struct Reflection {
   int walls;
 };
 
+// lambdaSums with the images of i's neighbours under `count` reflections (i's own images are
+// left to the caller). sum_grad2 is exact: grad_j C_i is the sum of j's own pair gradient
+// and those of its images, squared after summing (summing the squares under-estimated it
+// by up to a third at a wall, enough for single Jacobi iterations to overshoot).
+LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                                const Reflection* r, int count, float* pair_gradient);
+
 // lambdaSums over the images of i's neighbours under one reflection (i's own image is left
-// to the caller): density, sum_j grad_i W(x_i - image_j), sum of squared gradients.
+// to the caller): density, sum_j grad_i W(x_i - image_j), sum of squared gradients (of the
+// images alone: the rare coincident-pair path).
 LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                            const Reflection& r);
 
@@ -93,6 +101,8 @@ const char* neighborSumsVariant();
   DensitySum densitySums(const NeighborArrays&, const PairConstants&, std::size_t);           \
   VectorSum xsphSums(const NeighborArrays&, const PairConstants&, std::size_t, const float*,   \
                      const float*);                                                           \
+  LambdaSums lambdaSumsWithImages(const NeighborArrays&, const PairConstants&, std::size_t,    \
+                                  const Reflection*, int, float*);                             \
   LambdaSums imageLambdaSums(const NeighborArrays&, const PairConstants&, std::size_t,         \
                              const Reflection&);                                              \
   VectorSum imageDeltaSums(const NeighborArrays&, const PairConstants&, std::size_t,          \

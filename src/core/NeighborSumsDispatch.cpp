@@ -13,6 +13,7 @@ struct NeighborSumsTable {
   decltype(&neighbor_sums_base::deltaSums) delta;
   decltype(&neighbor_sums_base::densitySums) density;
   decltype(&neighbor_sums_base::xsphSums) xsph;
+  decltype(&neighbor_sums_base::lambdaSumsWithImages) lambda_with_images;
   decltype(&neighbor_sums_base::imageLambdaSums) image_lambda;
   decltype(&neighbor_sums_base::imageDeltaSums) image_delta;
   decltype(&neighbor_sums_base::imageDensitySums) image_density;
@@ -33,10 +34,12 @@ const NeighborSumsTable& table() {
   static const NeighborSumsTable t =
       cpuRunsV3() ? NeighborSumsTable{neighbor_sums_v3::lambdaSums, neighbor_sums_v3::deltaSums,
                                       neighbor_sums_v3::densitySums, neighbor_sums_v3::xsphSums,
+                                      neighbor_sums_v3::lambdaSumsWithImages,
                                       neighbor_sums_v3::imageLambdaSums, neighbor_sums_v3::imageDeltaSums,
                                       neighbor_sums_v3::imageDensitySums, "x86-64-v3"}
                   : NeighborSumsTable{neighbor_sums_base::lambdaSums, neighbor_sums_base::deltaSums,
                                       neighbor_sums_base::densitySums, neighbor_sums_base::xsphSums,
+                                      neighbor_sums_base::lambdaSumsWithImages,
                                       neighbor_sums_base::imageLambdaSums,
                                       neighbor_sums_base::imageDeltaSums,
                                       neighbor_sums_base::imageDensitySums, "build target"};
@@ -62,6 +65,11 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                    const float* velocity, const float* density) {
   return table().xsph(a, k, i, velocity, density);
+}
+
+LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                                const Reflection* r, int count, float* pair_gradient) {
+  return table().lambda_with_images(a, k, i, r, count, pair_gradient);
 }
 
 LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
