@@ -28,8 +28,8 @@ void fixedIterations(pbf::SolverParams& p, int n) {
   p.min_iterations = p.max_iterations = n;
   p.density_tolerance = 0.0f;
 }
-void tolerance(pbf::SolverParams& p, float tol, int max_iter = 30) {
-  p.min_iterations = 1;
+void tolerance(pbf::SolverParams& p, float tol, int max_iter = 30, int min_iter = 1) {
+  p.min_iterations = min_iter;
   p.max_iterations = max_iter;
   p.density_tolerance = tol;
 }
@@ -83,6 +83,13 @@ std::vector<Setting> settings(bool quick) {
   add("cfl0.4_max1/240_iter6", "combo", [](pbf::SolverParams& p) { fixedIterations(p, 6); cfl(p, 0.4f, 1.0f / 240); });
   add("cfl0.4_max1/240_tol0.003", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.4f, 1.0f / 240); });
   add("cfl0.4_max1/180_tol0.003", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.4f, 1.0f / 180); });
+  // The shipped defaults: at least two corrections per step (a single Jacobi correction
+  // overshoots where corrections overlap; see the half-dt pair below).
+  add("cfl0.4_max1/240_tol0.003_min2", "combo",
+      [](pbf::SolverParams& p) { tolerance(p, 0.003f, 30, 2); cfl(p, 0.4f, 1.0f / 240); });
+  add("cfl0.2_max1/480_tol0.003", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.2f, 1.0f / 480); });
+  add("cfl0.2_max1/480_tol0.003_min2", "combo",
+      [](pbf::SolverParams& p) { tolerance(p, 0.003f, 30, 2); cfl(p, 0.2f, 1.0f / 480); });
   // Resolution at the provisional defaults.
   add("d0.04", "resolution", [](pbf::SolverParams&) {}, 0.04f);
   add("d0.028", "resolution", [](pbf::SolverParams&) {}, 0.028f);
