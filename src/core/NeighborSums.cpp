@@ -118,6 +118,23 @@ VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t 
 
 // The image sums: the loops above with x_j replaced by its mirror image m x_j + b.
 
+namespace {
+
+// x_i minus the mirror image m x_j + b of a neighbour j, for one particle i and one
+// reflection: the image loops' shared geometry, in registers. (Internal linkage: each build
+// of this file keeps its own copy, see the top of the file.)
+struct ImageOffset {
+  ImageOffset(const Reflection& r, float xi, float yi, float zi)
+      : m0(r.m[0]), m1(r.m[1]), m2(r.m[2]), m3(r.m[3]), m4(r.m[4]), m5(r.m[5]), m6(r.m[6]),
+        m7(r.m[7]), m8(r.m[8]), bx(xi - r.b[0]), by(yi - r.b[1]), bz(zi - r.b[2]) {}
+  float dx(float x, float y, float z) const { return bx - (m0 * x + m1 * y + m2 * z); }
+  float dy(float x, float y, float z) const { return by - (m3 * x + m4 * y + m5 * z); }
+  float dz(float x, float y, float z) const { return bz - (m6 * x + m7 * y + m8 * z); }
+  float m0, m1, m2, m3, m4, m5, m6, m7, m8, bx, by, bz;
+};
+
+}  // namespace
+
 // One reflection (a particle by one wall, the common case): branch-free, vectorised.
 // grad_j C_i = -(g (x_i - x_j) + g' (R x_i - x_j)): the image of j seen from i is the image
 // of i seen from j, R x_i - x_j = m (x_i - R x_j) for a reflection.
@@ -127,12 +144,8 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-  const float m0 = r.m[0], m1 = r.m[1], m2 = r.m[2], m3 = r.m[3], m4 = r.m[4], m5 = r.m[5],
-              m6 = r.m[6], m7 = r.m[7], m8 = r.m[8];
-  const float bx = xi - r.b[0], by = yi - r.b[1], bz = zi - r.b[2];
-  const float rix = m0 * xi + m1 * yi + m2 * zi + r.b[0];  // R x_i
-  const float riy = m3 * xi + m4 * yi + m5 * zi + r.b[1];
-  const float riz = m6 * xi + m7 * yi + m8 * zi + r.b[2];
+  const ImageOffset o(r, xi, yi, zi);
+  const float rix = xi - o.dx(xi, yi, zi), riy = yi - o.dy(xi, yi, zi), riz = zi - o.dz(xi, yi, zi);  // R x_i
   const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
@@ -147,9 +160,7 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
     const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
     pair_gradient[e] = g;
     coincident += r2 <= tiny2 ? 1 : 0;
-    const float ex = bx - (m0 * x + m1 * y + m2 * z);
-    const float ey = by - (m3 * x + m4 * y + m5 * z);
-    const float ez = bz - (m6 * x + m7 * y + m8 * z);
+    const float ex = o.dx(x, y, z), ey = o.dy(x, y, z), ez = o.dz(x, y, z);
     const float s2 = ex * ex + ey * ey + ez * ez;
     const float slen = std::sqrt(s2);
     const float sl = std::max(h - slen, 0.0f);
@@ -215,9 +226,7 @@ LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std:
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-  const float m0 = r.m[0], m1 = r.m[1], m2 = r.m[2], m3 = r.m[3], m4 = r.m[4], m5 = r.m[5],
-              m6 = r.m[6], m7 = r.m[7], m8 = r.m[8];
-  const float bx = xi - r.b[0], by = yi - r.b[1], bz = zi - r.b[2];
+  const ImageOffset o(r, xi, yi, zi);
   const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
@@ -225,9 +234,7 @@ LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std:
   for (std::size_t e = begin; e < end; ++e) {
     const std::uint32_t j = nbr[e];
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
-    const float dx = bx - (m0 * x + m1 * y + m2 * z);
-    const float dy = by - (m3 * x + m4 * y + m5 * z);
-    const float dz = bz - (m6 * x + m7 * y + m8 * z);
+    const float dx = o.dx(x, y, z), dy = o.dy(x, y, z), dz = o.dz(x, y, z);
     const float r2 = dx * dx + dy * dy + dz * dz;
     const float rlen = std::sqrt(r2);
     const float dl = std::max(h - rlen, 0.0f);
@@ -248,9 +255,7 @@ VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::s
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-  const float m0 = r.m[0], m1 = r.m[1], m2 = r.m[2], m3 = r.m[3], m4 = r.m[4], m5 = r.m[5],
-              m6 = r.m[6], m7 = r.m[7], m8 = r.m[8];
-  const float bx = xi - r.b[0], by = yi - r.b[1], bz = zi - r.b[2];
+  const ImageOffset o(r, xi, yi, zi);
   const float h = k.h, spiky = k.spiky, tiny2 = k.coincident2;
   const float li = lambda[i];
   float sx = 0.0f, sy = 0.0f, sz = 0.0f;
@@ -259,9 +264,7 @@ VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::s
   for (std::size_t e = begin; e < end; ++e) {
     const std::uint32_t j = nbr[e];
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
-    const float dx = bx - (m0 * x + m1 * y + m2 * z);
-    const float dy = by - (m3 * x + m4 * y + m5 * z);
-    const float dz = bz - (m6 * x + m7 * y + m8 * z);
+    const float dx = o.dx(x, y, z), dy = o.dy(x, y, z), dz = o.dz(x, y, z);
     const float r2 = dx * dx + dy * dy + dz * dz;
     const float rlen = std::sqrt(r2);
     const float dl = std::max(h - rlen, 0.0f);
@@ -280,9 +283,7 @@ DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-  const float m0 = r.m[0], m1 = r.m[1], m2 = r.m[2], m3 = r.m[3], m4 = r.m[4], m5 = r.m[5],
-              m6 = r.m[6], m7 = r.m[7], m8 = r.m[8];
-  const float bx = xi - r.b[0], by = yi - r.b[1], bz = zi - r.b[2];
+  const ImageOffset o(r, xi, yi, zi);
   const float h = k.h, h2 = k.h2, density = k.density;
   float rho = 0.0f;
   std::uint32_t count = 0;
@@ -290,9 +291,7 @@ DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std
   for (std::size_t e = begin; e < end; ++e) {
     const std::uint32_t j = nbr[e];
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
-    const float dx = bx - (m0 * x + m1 * y + m2 * z);
-    const float dy = by - (m3 * x + m4 * y + m5 * z);
-    const float dz = bz - (m6 * x + m7 * y + m8 * z);
+    const float dx = o.dx(x, y, z), dy = o.dy(x, y, z), dz = o.dz(x, y, z);
     const float r2 = dx * dx + dy * dy + dz * dz;
     const float dl = std::max(h - std::sqrt(r2), 0.0f);
     rho += density * dl * dl * dl;
