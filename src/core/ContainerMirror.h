@@ -45,45 +45,27 @@ class ContainerMirror {
       : on_(!box.isEmpty()),
         posed_(!pose.isApprox(Eigen::Isometry3f::Identity(), 1e-7f)),
         box_(box),
-        pose_(pose),
         inverse_(pose.inverse(Eigen::Isometry)),
-        reach_(support_radius - radius) {}
+        reach_(support_radius - radius) {
+    if (on_) buildTable(pose);
+  }
 
   // The reflections whose images can lie within h of a particle at x (world frame): every
   // non-empty set of the walls that near (one per axis). Returns how many.
   int reflections(const Eigen::Vector3f& x, Reflection (&out)[kMaxReflections]) const {
     if (!on_) return 0;
     const Eigen::Vector3f q = posed_ ? Eigen::Vector3f(inverse_ * x) : x;
-    Eigen::Vector3f plane = Eigen::Vector3f::Zero();
-    int near_axes = 0, face_of_axis[3] = {0, 0, 0};
+    int side[3];  // 0: no wall near, 1: the min wall, 2: the max wall
+    int near_axes = 0;
     for (int a = 0; a < 3; ++a) {
       const float to_min = q[a] - box_.min()[a], to_max = box_.max()[a] - q[a];
-      if (std::min(to_min, to_max) >= reach_) continue;
-      const bool max_side = to_max < to_min;
-      near_axes |= 1 << a;
-      plane[a] = max_side ? box_.max()[a] : box_.min()[a];
-      face_of_axis[a] = 2 * a + (max_side ? 1 : 0);
+      side[a] = std::min(to_min, to_max) >= reach_ ? 0 : (to_max < to_min ? 2 : 1);
+      if (side[a] != 0) near_axes |= 1 << a;
     }
     if (near_axes == 0) return 0;  // the common case
     int count = 0;
-    for (int set = 1; set < 8; ++set) {
-      if ((set & near_axes) != set) continue;
-      // In the container frame: y_a = 2 plane_a - q_a on the reflected axes. In the world
-      // frame that is the affine map x -> A S A^T x + (t - A S A^T t + A c), A and t the
-      // pose, S = diag(+-1), c = 2 plane on the reflected axes.
-      Eigen::Vector3f s = Eigen::Vector3f::Ones(), c = Eigen::Vector3f::Zero();
-      Reflection& r = out[count++];
-      r.walls = 0;
-      for (int a = 0; a < 3; ++a)
-        if (set & (1 << a)) s[a] = -1.0f, c[a] = 2.0f * plane[a], r.walls |= 1 << face_of_axis[a];
-      const Eigen::Matrix3f A = pose_.linear();
-      const Eigen::Matrix3f M = A * s.asDiagonal() * A.transpose();
-      const Eigen::Vector3f b = pose_.translation() - M * pose_.translation() + A * c;
-      for (int row = 0; row < 3; ++row) {
-        for (int col = 0; col < 3; ++col) r.m[3 * row + col] = M(row, col);
-        r.b[row] = b[row];
-      }
-    }
+    for (int set = 1; set < 8; ++set)
+      if ((set & near_axes) == set) out[count++] = table_[code(set, side)];
     return count;
   }
 
@@ -116,13 +98,47 @@ class ContainerMirror {
   }
 
   // The container frame's axis a in the world frame (for splitting a push among walls).
-  Eigen::Vector3f axis(int a) const { return pose_.linear().col(a); }
+  Eigen::Vector3f axis(int a) const { return inverse_.linear().row(a).transpose(); }
 
  private:
+  // A set of walls, one side per reflected axis, as a base-3 number (side 1 or 2 per axis).
+  static int code(int set, const int (&side)[3]) {
+    int c = 0;
+    for (int a = 2; a >= 0; --a) c = 3 * c + ((set >> a) & 1 ? side[a] : 0);
+    return c;
+  }
+
+  // Every reflection the box has (26 sets of walls), once per pass instead of per particle.
+  // In the container frame: y_a = 2 plane_a - q_a on the reflected axes. In the world frame
+  // that is the affine map x -> A S A^T x + (t - A S A^T t + A c), A and t the pose,
+  // S = diag(+-1), c = 2 plane on the reflected axes.
+  void buildTable(const Eigen::Isometry3f& pose) {
+    const Eigen::Matrix3f A = pose.linear();
+    for (int c = 1; c < 27; ++c) {
+      Eigen::Vector3f s = Eigen::Vector3f::Ones(), shift = Eigen::Vector3f::Zero();
+      Reflection& r = table_[c];
+      r.walls = 0;
+      for (int a = 0, rest = c; a < 3; ++a, rest /= 3) {
+        const int side = rest % 3;
+        if (side == 0) continue;
+        s[a] = -1.0f;
+        shift[a] = 2.0f * (side == 2 ? box_.max()[a] : box_.min()[a]);
+        r.walls |= 1 << (2 * a + side - 1);
+      }
+      const Eigen::Matrix3f M = A * s.asDiagonal() * A.transpose();
+      const Eigen::Vector3f b = pose.translation() - M * pose.translation() + A * shift;
+      for (int row = 0; row < 3; ++row) {
+        for (int col = 0; col < 3; ++col) r.m[3 * row + col] = M(row, col);
+        r.b[row] = b[row];
+      }
+    }
+  }
+
   bool on_, posed_;
   Eigen::AlignedBox3f box_;
-  Eigen::Isometry3f pose_, inverse_;
+  Eigen::Isometry3f inverse_;
   float reach_;
+  Reflection table_[27];  // by code(); entry 0 (no wall) unused
 };
 
 }  // namespace pbf
