@@ -55,7 +55,8 @@ std::string SolverParams::validate() const {
   if (err.tellp() == 0 && (min_iterations < 1 || max_iterations < min_iterations ||
                            max_iterations > 1000))
     err << "iterations must satisfy 1 <= min_iterations <= max_iterations <= 1000 (got "
-        << min_iterations << ", " << max_iterations << ")";
+        << min_iterations << ", " << max_iterations << "; min_iterations defaults to 2: set it "
+        << "too for fewer)";
   if (err.tellp() == 0) nonNegative("density_tolerance", density_tolerance);
   if (err.tellp() == 0) nonNegative("cfm_relaxation", cfm_relaxation);
   if (err.tellp() == 0) nonNegative("scorr_k", scorr_k);

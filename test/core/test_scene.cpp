@@ -98,6 +98,20 @@ TEST(Scene, SolverYamlIsAllOrNothing) {
   EXPECT_FLOAT_EQ(p.gravity.z(), -1.0f);
 }
 
+// One iteration per step was the old default's floor; now that min_iterations defaults to 2,
+// asking for max_iterations 1 alone says which parameter to set as well.
+TEST(Scene, FewerIterationsThanTheDefaultMinimumNameIt) {
+  pbf::SolverParams p;
+  try {
+    pbf::applySolverYaml("{max_iterations: 1}", "params", p);
+    FAIL() << "max_iterations below the default min_iterations was accepted";
+  } catch (const pbf::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("min_iterations defaults to 2"), std::string::npos) << e.what();
+  }
+  pbf::applySolverYaml("{min_iterations: 1, max_iterations: 1}", "params", p);
+  EXPECT_EQ(p.max_iterations, 1);
+}
+
 TEST(Scene, DynamicObstaclesFloatWithTheirMassAndPublishedFrame) {
   const std::string head =
       "container: {min: [0, 0, 0], max: [1, 1, 1]}\n"
