@@ -16,6 +16,7 @@ endif()
 
 add_library(pbf_core
   src/core/NeighborGrid.cpp
+  src/core/CandidateFilter.cpp
   src/core/PbfSolver.cpp
   src/core/SolverNeighbors.cpp
   src/core/ConstraintPasses.cpp

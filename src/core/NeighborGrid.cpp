@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <limits>
 #include <string>
 #include <numeric>
 #include <stdexcept>
+
+#include "CandidateFilter.h"
 
 namespace pbf {
 
@@ -145,7 +148,7 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
     std::size_t used = 0;
     // All particles of a cell share their 27-cell candidate set: gather it once per cell
     // into a contiguous local copy (ascending index), then test every particle of the cell
-    // against it with a branch-free loop.
+    // against it (CandidateFilter.h: eight candidates at a time where the CPU can).
     std::vector<std::uint32_t> cand;
     std::vector<float> cx, cy, cz;
     std::size_t i = begin;
@@ -169,27 +172,28 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
       for (int k = 0; k < range_count; ++k)
         for (std::uint32_t j = ranges[k].begin; j < ranges[k].end; ++j) cand.push_back(j);
       const std::size_t m = cand.size();
-      cx.resize(m);
-      cy.resize(m);
-      cz.resize(m);
+      // Padded to whole groups of the filter's width with points that are never near.
+      const std::size_t padded = (m + kCandidatePadding - 1) / kCandidatePadding * kCandidatePadding;
+      cand.resize(padded, 0);
+      cx.resize(padded);
+      cy.resize(padded);
+      cz.resize(padded);
       for (std::size_t c = 0; c < m; ++c) {
         const Eigen::Vector3f& q = pts[cand[c]];
         cx[c] = q.x();
         cy[c] = q.y();
         cz[c] = q.z();
       }
+      constexpr float kFar = std::numeric_limits<float>::infinity();
+      std::fill(cx.begin() + m, cx.end(), kFar);
+      std::fill(cy.begin() + m, cy.end(), kFar);
+      std::fill(cz.begin() + m, cz.end(), kFar);
+      const Candidates candidates{cx.data(), cy.data(), cz.data(), cand.data(), m};
       for (; i < cell_end; ++i) {
         offsets_[i] = static_cast<std::uint32_t>(used);  // block-local until the merge
-        const float xi = pts[i].x(), yi = pts[i].y(), zi = pts[i].z();
-        std::size_t pos = used;
-        if (buf.size() < pos + m) buf.resize(std::max(2 * buf.size(), pos + m));
-        std::uint32_t* out = buf.data();
-        for (std::size_t c = 0; c < m; ++c) {
-          const float dx = cx[c] - xi, dy = cy[c] - yi, dz = cz[c] - zi;
-          out[pos] = cand[c];
-          pos += (dx * dx + dy * dy + dz * dz < r2) & (cand[c] != i);
-        }
-        used = pos;
+        if (buf.size() < used + padded) buf.resize(std::max(2 * buf.size(), used + padded));
+        used += keepCandidatesWithin(candidates, pts[i].x(), pts[i].y(), pts[i].z(), r2,
+                                     static_cast<std::uint32_t>(i), buf.data() + used);
       }
       if (used > kMaxPairs) too_many = true;
     }

@@ -4,9 +4,11 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 
+#include "CandidateFilter.h"
 #include "pbf_ros/core/NeighborGrid.h"
 
 namespace {
@@ -97,6 +99,44 @@ TEST(NeighborGrid, ListsDoNotDependOnThreadCount) {
   EXPECT_EQ(order[0], order[1]);
   EXPECT_EQ(off[0], off[1]);
   EXPECT_EQ(idx[0], idx[1]);
+}
+
+// The wide (AVX2) filter must keep exactly the pairs the scalar one keeps, also at distances
+// that round to the radius, for every count modulo the group width and with `self` inside.
+TEST(CandidateFilter, BothBuildsKeepTheSamePairs) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-0.1f, 0.1f);
+  const float radius = 0.08f, r2 = radius * radius;
+  std::size_t kept_total = 0;
+  for (std::size_t count = 0; count < 70; ++count) {
+    const std::size_t padded = (count + pbf::kCandidatePadding - 1) / pbf::kCandidatePadding *
+                               pbf::kCandidatePadding;
+    std::vector<float> x(padded, INFINITY), y(padded, INFINITY), z(padded, INFINITY);
+    std::vector<std::uint32_t> index(padded, 0);
+    for (std::size_t k = 0; k < count; ++k) {
+      x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
+      if (k % 3 == 0) {  // exactly on, or an ulp either side of, the sphere along x
+        const float off[3] = {std::nextafter(radius, 0.0f), radius, std::nextafter(radius, 1.0f)};
+        x[k] = off[k % 9 / 3], y[k] = 0.0f, z[k] = 0.0f;
+      }
+      index[k] = static_cast<std::uint32_t>(3 * k + 1);
+    }
+    const std::uint32_t self = count > 0 ? index[count / 2] : 7;
+    const pbf::Candidates c{x.data(), y.data(), z.data(), index.data(), count};
+    std::vector<std::uint32_t> wide(padded + pbf::kCandidatePadding), scalar(wide.size());
+    const std::size_t n_wide = pbf::keepCandidatesWithin(c, 0.0f, 0.0f, 0.0f, r2, self, wide.data());
+    const std::size_t n_scalar = pbf::keepCandidatesWithinScalar(c, 0.0f, 0.0f, 0.0f, r2, self, scalar.data());
+    ASSERT_EQ(n_wide, n_scalar) << "count " << count << " (" << pbf::candidateFilterVariant() << ")";
+    wide.resize(n_wide);
+    scalar.resize(n_scalar);
+    EXPECT_EQ(wide, scalar) << "count " << count;
+    std::vector<std::uint32_t> expected;  // brute force, in candidate order
+    for (std::size_t k = 0; k < count; ++k)
+      if (index[k] != self && x[k] * x[k] + y[k] * y[k] + z[k] * z[k] < r2) expected.push_back(index[k]);
+    EXPECT_EQ(scalar, expected) << "count " << count;
+    kept_total += n_scalar;
+  }
+  EXPECT_GT(kept_total, 100u);  // the test kept and dropped pairs
 }
 
 TEST(NeighborGrid, MortonInterleavesBits) {

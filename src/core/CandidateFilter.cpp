@@ -1,0 +1,109 @@
+#include "CandidateFilter.h"
+
+#include <array>
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define PBF_CANDIDATE_FILTER_AVX2 1
+#endif
+
+namespace pbf {
+
+namespace {
+
+std::size_t keepScalar(const Candidates& c, float px, float py, float pz, float r2,
+                       std::uint32_t self, std::uint32_t* out) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < c.count; ++k) {
+    const float dx = c.x[k] - px, dy = c.y[k] - py, dz = c.z[k] - pz;
+    out[kept] = c.index[k];  // branch-free: written always, kept when it passes
+    kept += (dx * dx + dy * dy + dz * dz < r2) & (c.index[k] != self);
+  }
+  return kept;
+}
+
+#ifdef PBF_CANDIDATE_FILTER_AVX2
+
+// For each 8-bit mask of kept lanes, the lanes to gather, lowest first, one byte each.
+constexpr std::array<std::uint64_t, 256> makeCompressTable() {
+  std::array<std::uint64_t, 256> table{};
+  for (int mask = 0; mask < 256; ++mask) {
+    std::uint64_t lanes = 0;
+    int filled = 0;
+    for (int lane = 0; lane < 8; ++lane)
+      if (mask & (1 << lane)) lanes |= std::uint64_t(lane) << (8 * filled++);
+    table[mask] = lanes;
+  }
+  return table;
+}
+constexpr std::array<std::uint64_t, 256> kCompressTable = makeCompressTable();
+
+// No "fma" in the target: the squared distance is rounded exactly as in keepScalar.
+__attribute__((target("avx2,popcnt"))) std::size_t keepAvx2(const Candidates& c, float px, float py,
+                                                             float pz, float r2, std::uint32_t self,
+                                                             std::uint32_t* out) {
+  const __m256 vx = _mm256_set1_ps(px), vy = _mm256_set1_ps(py), vz = _mm256_set1_ps(pz);
+  const __m256 vr2 = _mm256_set1_ps(r2);
+  const __m256i vself = _mm256_set1_epi32(static_cast<int>(self));
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < c.count; k += 8) {
+    const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(c.x + k), vx);
+    const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(c.y + k), vy);
+    const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(c.z + k), vz);
+    const __m256 d2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                                    _mm256_mul_ps(dz, dz));
+    const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c.index + k));
+    const int near = _mm256_movemask_ps(_mm256_cmp_ps(d2, vr2, _CMP_LT_OQ));
+    const int is_self = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(index, vself)));
+    // Lanes past count hold +infinity (never near); their index lanes are masked out too.
+    const int mask = near & ~is_self & 0xff;
+    const __m256i lanes =
+        _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kCompressTable[mask])));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + kept),
+                        _mm256_permutevar8x32_epi32(index, lanes));
+    kept += static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask)));
+  }
+  return kept;
+}
+
+bool cpuRunsAvx2() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+}
+
+#endif
+
+using FilterFn = std::size_t (*)(const Candidates&, float, float, float, float, std::uint32_t,
+                                 std::uint32_t*);
+
+// Chosen on first use (a function-local static: thread-safe, no static-initialisation order).
+FilterFn chosenFilter() {
+#ifdef PBF_CANDIDATE_FILTER_AVX2
+  static const FilterFn fn = cpuRunsAvx2() ? keepAvx2 : keepScalar;
+#else
+  static const FilterFn fn = keepScalar;
+#endif
+  return fn;
+}
+
+}  // namespace
+
+std::size_t keepCandidatesWithin(const Candidates& c, float px, float py, float pz, float r2,
+                                 std::uint32_t self, std::uint32_t* out) {
+  return chosenFilter()(c, px, py, pz, r2, self, out);
+}
+
+std::size_t keepCandidatesWithinScalar(const Candidates& c, float px, float py, float pz, float r2,
+                                       std::uint32_t self, std::uint32_t* out) {
+  return keepScalar(c, px, py, pz, r2, self, out);
+}
+
+const char* candidateFilterVariant() {
+#ifdef PBF_CANDIDATE_FILTER_AVX2
+  return chosenFilter() == keepAvx2 ? "avx2" : "scalar";
+#else
+  return "scalar";
+#endif
+}
+
+}  // namespace pbf
