@@ -75,6 +75,10 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   // gradient factor instead of another sqrt and division.
   pair_gradient_.resize(grid_->indices().size());
   float* G = pair_gradient_.data();
+  // Image pairs of particles by one wall: written for those particles' entries only.
+  image_gradient_.resize(images.isOn() ? grid_->indices().size() : 0);
+  float* GI = image_gradient_.data();
+  has_coincident_pair_.resize(n);
   if (walls) wall_gradient_.resize(n);
 
 #pragma omp parallel for schedule(static)
@@ -84,7 +88,8 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
     Reflection refl[ContainerMirror::kMaxReflections];
     const int reflections = images.reflections(predicted_[i], refl);
     const LambdaSums s = reflections == 0 ? lambdaSums(arrays, pc, i, G)
-                                          : lambdaSumsWithImages(arrays, pc, i, refl, reflections, G);
+                                          : lambdaSumsWithImages(arrays, pc, i, refl, reflections, G, GI);
+    has_coincident_pair_[i] = s.coincident > 0;  // the delta-p pass sees the same positions
     float rho = self_density + s.rho, gx = s.gx, gy = s.gy, gz = s.gz, sum_grad2 = s.sum_grad2;
     if (s.coincident > 0) {  // rare: redo the gradients with directions for coincident pairs
       Eigen::Vector3f gi = Eigen::Vector3f::Zero();
@@ -212,6 +217,7 @@ void PbfSolver::computeDeltas(LambdaPass pass) {
   const float* P = predicted_.empty() ? nullptr : predicted_[0].data();
   const float* L = lambda_.data();
   const float* G = pair_gradient_.data();  // (m / rho0) grad W / r, from the lambda pass
+  const float* GI = image_gradient_.data();  // the same for image pairs by one wall
   const float grad_scale = params_.densityMass() / params_.rest_density;
   const float tiny2 = kCoincident * k.h2;
   // With k = 0 the loop without s_corr runs: no cost.
@@ -229,27 +235,33 @@ void PbfSolver::computeDeltas(LambdaPass pass) {
   for (std::size_t i = 0; i < n; ++i) {
     const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
     const float li = L[i];
+    Reflection refl[ContainerMirror::kMaxReflections];
+    const int reflections = images.reflections(predicted_[i], refl);
+    // By one wall (the common case near walls), the images' pairs ride along with the
+    // direct ones, from the gradients the lambda pass cached.
+    bool neighbour_images_done = false;
     float dx_sum = 0.0f, dy_sum = 0.0f, dz_sum = 0.0f;
-    int coincident = 0;
+    const bool coincident = has_coincident_pair_[i];  // counted by the lambda pass
     if (!scorr.on) {
-      const VectorSum s = deltaSums(arrays, tiny2, i, L, G);
-      dx_sum = s.x, dy_sum = s.y, dz_sum = s.z, coincident = s.coincident;
+      neighbour_images_done = reflections == 1 && !coincident;
+      const VectorSum s = neighbour_images_done ? deltaSumsWithImage(arrays, i, refl[0], L, G, GI)
+                                                : deltaSums(arrays, i, L, G);
+      dx_sum = s.x, dy_sum = s.y, dz_sum = s.z;
     } else {
       const float si = S[i];
-#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum, coincident)
+#pragma omp simd reduction(+ : dx_sum, dy_sum, dz_sum)
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
         const std::uint32_t j = nbr[e];
         const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
         const float r2 = dx * dx + dy * dy + dz * dz;
         const float g = (li + L[j] + scorr(r2) * std::min(si, S[j])) * G[e];
-        coincident += r2 <= tiny2 ? 1 : 0;
         dx_sum += g * dx;
         dy_sum += g * dy;
         dz_sum += g * dz;
       }
     }
     Eigen::Vector3f dp(dx_sum, dy_sum, dz_sum);
-    if (coincident > 0) {  // rare: exact path with directions for coincident pairs
+    if (coincident) {  // rare: exact path with directions for coincident pairs
       dp.setZero();
       for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
         const std::uint32_t j = nbr[e];
@@ -259,7 +271,7 @@ void PbfSolver::computeDeltas(LambdaPass pass) {
         dp += factor * grad_scale * pairGradient(i, j);
       }
     }
-    dp += imagePush(images, arrays, image_pc, i);
+    if (reflections > 0) dp += imagePush(arrays, image_pc, i, refl, reflections, neighbour_images_done);
     delta_[i] = dp;
     if (sum_lambda) lambda_sum_[i] += li;
     if (walls) delta_[i] += li * wall_gradient_[i];  // lambda_i times the solids' part of grad_i C_i
@@ -268,18 +280,19 @@ void PbfSolver::computeDeltas(LambdaPass pass) {
 }
 
 // The delta-p of particle i from the container's images: (lambda_i + lambda_j) grad W per
-// image pair, as for any pair; i's own image pushes with 2 lambda_i. s_corr has no images.
-Eigen::Vector3f PbfSolver::imagePush(const ContainerMirror& images, const NeighborArrays& arrays,
-                                     const PairConstants& pc, std::size_t i) const {
-  Reflection refl[ContainerMirror::kMaxReflections];
-  const int reflections = images.reflections(predicted_[i], refl);
-  if (reflections == 0) return Eigen::Vector3f::Zero();
+// image pair, as for any pair (unless the caller summed those already); i's own image pushes
+// with 2 lambda_i. s_corr has no images.
+Eigen::Vector3f PbfSolver::imagePush(const NeighborArrays& arrays, const PairConstants& pc,
+                                     std::size_t i, const Reflection* refl, int reflections,
+                                     bool neighbour_images_done) const {
   const float* P = arrays.position;
   const float h = pc.h, spiky = pc.spiky;
   Eigen::Vector3f push = Eigen::Vector3f::Zero();
   for (int q = 0; q < reflections; ++q) {
-    const VectorSum s = imageDeltaSums(arrays, pc, i, refl[q], lambda_.data());
-    push += Eigen::Vector3f(s.x, s.y, s.z);
+    if (!neighbour_images_done) {
+      const VectorSum s = imageDeltaSums(arrays, pc, i, refl[q], lambda_.data());
+      push += Eigen::Vector3f(s.x, s.y, s.z);
+    }
     const Eigen::Vector3f r = ContainerMirror::imageOffset(refl[q], P, i, i);
     const float rlen = r.norm();
     if (rlen > 0.0f && rlen < h) push += (2.0f * lambda_[i] * spiky * (h - rlen) * (h - rlen) / rlen) * r;

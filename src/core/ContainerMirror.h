@@ -50,6 +50,8 @@ class ContainerMirror {
     if (on_) buildTable(pose);
   }
 
+  bool isOn() const { return on_; }
+
   // The reflections whose images can lie within h of a particle at x (world frame): every
   // non-empty set of the walls that near (one per axis). Returns how many.
   int reflections(const Eigen::Vector3f& x, Reflection (&out)[kMaxReflections]) const {

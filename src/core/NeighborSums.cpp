@@ -51,7 +51,7 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
   return {rho, gx, gy, gz, sum_grad2, coincident};
 }
 
-VectorSum deltaSums(const NeighborArrays& a, float coincident2, std::size_t i, const float* lambda,
+VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
                     const float* pair_gradient) {
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
@@ -59,18 +59,16 @@ VectorSum deltaSums(const NeighborArrays& a, float coincident2, std::size_t i, c
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
   const float li = lambda[i];
   float sx = 0.0f, sy = 0.0f, sz = 0.0f;
-  int coincident = 0;
-#pragma omp simd reduction(+ : sx, sy, sz, coincident)
+#pragma omp simd reduction(+ : sx, sy, sz)
   for (std::size_t e = begin; e < end; ++e) {
     const std::uint32_t j = nbr[e];
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
     const float g = (li + lambda[j]) * pair_gradient[e];
-    coincident += dx * dx + dy * dy + dz * dz <= coincident2 ? 1 : 0;
     sx += g * dx;
     sy += g * dy;
     sz += g * dz;
   }
-  return {sx, sy, sz, coincident};
+  return {sx, sy, sz, 0};
 }
 
 DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i) {
@@ -139,7 +137,8 @@ struct ImageOffset {
 // grad_j C_i = -(g (x_i - x_j) + g' (R x_i - x_j)): the image of j seen from i is the image
 // of i seen from j, R x_i - x_j = m (x_i - R x_j) for a reflection.
 static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstants& k, std::size_t i,
-                                      const Reflection& r, float* pair_gradient) {
+                                      const Reflection& r, float* pair_gradient,
+                                      float* image_gradient) {
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
@@ -165,6 +164,7 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
     const float slen = std::sqrt(s2);
     const float sl = std::max(h - slen, 0.0f);
     const float gi = s2 > tiny2 ? spiky * sl * sl / slen : 0.0f;
+    image_gradient[e] = gi;
     rho += density * (dl * dl * dl + sl * sl * sl);
     gx += g * dx + gi * ex;
     gy += g * dy + gi * ey;
@@ -176,8 +176,9 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
 }
 
 LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k, std::size_t i,
-                                const Reflection* r, int count, float* pair_gradient) {
-  if (count == 1) return lambdaSumsWithImage(a, k, i, r[0], pair_gradient);
+                                const Reflection* r, int count, float* pair_gradient,
+                                float* image_gradient) {
+  if (count == 1) return lambdaSumsWithImage(a, k, i, r[0], pair_gradient, image_gradient);
   // Two or three walls (edges, corners: few particles): the same, scalar over the reflections.
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
@@ -275,6 +276,29 @@ VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::s
     sz += g * dz;
   }
   return {sx, sy, sz, coincident};
+}
+
+VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Reflection& r,
+                             const float* lambda, const float* pair_gradient,
+                             const float* image_gradient) {
+  const float* P = a.position;
+  const std::uint32_t* nbr = a.index;
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
+  const ImageOffset o(r, xi, yi, zi);
+  const float li = lambda[i];
+  float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+#pragma omp simd reduction(+ : sx, sy, sz)
+  for (std::size_t e = begin; e < end; ++e) {
+    const std::uint32_t j = nbr[e];
+    const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
+    const float lij = li + lambda[j];
+    const float g = lij * pair_gradient[e], gi = lij * image_gradient[e];
+    sx += g * (xi - x) + gi * o.dx(x, y, z);
+    sy += g * (yi - y) + gi * o.dy(x, y, z);
+    sz += g * (zi - z) + gi * o.dz(x, y, z);
+  }
+  return {sx, sy, sz, 0};
 }
 
 DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i,

@@ -40,12 +40,13 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
                       float* pair_gradient);
 
 // sum_j (lambda_i + lambda_j) g_ij r_ij: particle i's position correction (eq 12, no
-// s_corr), from the lambda pass's pair factors. `coincident` as above.
+// s_corr), from the lambda pass's pair factors (0 for coincident pairs, which the lambda
+// pass counted: the caller redoes them). `coincident` is left 0.
 struct VectorSum {
   float x, y, z;
   int coincident;
 };
-VectorSum deltaSums(const NeighborArrays& a, float coincident2, std::size_t i, const float* lambda,
+VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
                     const float* pair_gradient);
 
 // Density (m W summed over neighbours within h, self excluded) and that neighbour count.
@@ -71,8 +72,18 @@ struct Reflection {
 // left to the caller). sum_grad2 is exact: grad_j C_i is the sum of j's own pair gradient
 // and those of its images, squared after summing (summing the squares under-estimated it
 // by up to a third at a wall, enough for single Jacobi iterations to overshoot).
+// With one reflection (a particle by one wall, the common case) it also writes each image
+// pair's gradient factor to image_gradient, for deltaSumsWithImage.
 LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k, std::size_t i,
-                                const Reflection* r, int count, float* pair_gradient);
+                                const Reflection* r, int count, float* pair_gradient,
+                                float* image_gradient);
+
+// deltaSums plus the images' part under one reflection, sum_j (lambda_i + lambda_j)
+// g'_ij (x_i - image_j), from the factors lambdaSumsWithImages cached (i's own image left to
+// the caller): one pass over the neighbours for both.
+VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Reflection& r,
+                             const float* lambda, const float* pair_gradient,
+                             const float* image_gradient);
 
 // lambdaSums over the images of i's neighbours under one reflection (i's own image is left
 // to the caller): density, sum_j grad_i W(x_i - image_j), sum of squared gradients (of the
@@ -81,8 +92,8 @@ LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std:
                            const Reflection& r);
 
 // sum_j (lambda_i + lambda_j) grad W(x_i - image_j): the images' part of i's correction
-// (i's own image left to the caller). Gradients are recomputed, not cached: few particles
-// are near a wall.
+// (i's own image left to the caller), gradients recomputed: for particles at an edge or a
+// corner (several reflections), which are few.
 VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                          const Reflection& r, const float* lambda);
 
@@ -97,12 +108,14 @@ const char* neighborSumsVariant();
 #define PBF_DECLARE_NEIGHBOR_SUMS(ns)                                                          \
   namespace ns {                                                                              \
   LambdaSums lambdaSums(const NeighborArrays&, const PairConstants&, std::size_t, float*);    \
-  VectorSum deltaSums(const NeighborArrays&, float, std::size_t, const float*, const float*); \
+  VectorSum deltaSums(const NeighborArrays&, std::size_t, const float*, const float*);        \
   DensitySum densitySums(const NeighborArrays&, const PairConstants&, std::size_t);           \
   VectorSum xsphSums(const NeighborArrays&, const PairConstants&, std::size_t, const float*,   \
                      const float*);                                                           \
   LambdaSums lambdaSumsWithImages(const NeighborArrays&, const PairConstants&, std::size_t,    \
-                                  const Reflection*, int, float*);                             \
+                                  const Reflection*, int, float*, float*);                     \
+  VectorSum deltaSumsWithImage(const NeighborArrays&, std::size_t, const Reflection&,          \
+                               const float*, const float*, const float*);                      \
   LambdaSums imageLambdaSums(const NeighborArrays&, const PairConstants&, std::size_t,         \
                              const Reflection&);                                              \
   VectorSum imageDeltaSums(const NeighborArrays&, const PairConstants&, std::size_t,          \

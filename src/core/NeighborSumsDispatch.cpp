@@ -14,6 +14,7 @@ struct NeighborSumsTable {
   decltype(&neighbor_sums_base::densitySums) density;
   decltype(&neighbor_sums_base::xsphSums) xsph;
   decltype(&neighbor_sums_base::lambdaSumsWithImages) lambda_with_images;
+  decltype(&neighbor_sums_base::deltaSumsWithImage) delta_with_image;
   decltype(&neighbor_sums_base::imageLambdaSums) image_lambda;
   decltype(&neighbor_sums_base::imageDeltaSums) image_delta;
   decltype(&neighbor_sums_base::imageDensitySums) image_density;
@@ -35,11 +36,13 @@ const NeighborSumsTable& table() {
       cpuRunsV3() ? NeighborSumsTable{neighbor_sums_v3::lambdaSums, neighbor_sums_v3::deltaSums,
                                       neighbor_sums_v3::densitySums, neighbor_sums_v3::xsphSums,
                                       neighbor_sums_v3::lambdaSumsWithImages,
+                                      neighbor_sums_v3::deltaSumsWithImage,
                                       neighbor_sums_v3::imageLambdaSums, neighbor_sums_v3::imageDeltaSums,
                                       neighbor_sums_v3::imageDensitySums, "x86-64-v3"}
                   : NeighborSumsTable{neighbor_sums_base::lambdaSums, neighbor_sums_base::deltaSums,
                                       neighbor_sums_base::densitySums, neighbor_sums_base::xsphSums,
                                       neighbor_sums_base::lambdaSumsWithImages,
+                                      neighbor_sums_base::deltaSumsWithImage,
                                       neighbor_sums_base::imageLambdaSums,
                                       neighbor_sums_base::imageDeltaSums,
                                       neighbor_sums_base::imageDensitySums, "build target"};
@@ -53,9 +56,9 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
   return table().lambda(a, k, i, pair_gradient);
 }
 
-VectorSum deltaSums(const NeighborArrays& a, float coincident2, std::size_t i, const float* lambda,
+VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
                     const float* pair_gradient) {
-  return table().delta(a, coincident2, i, lambda, pair_gradient);
+  return table().delta(a, i, lambda, pair_gradient);
 }
 
 DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i) {
@@ -68,8 +71,15 @@ VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t 
 }
 
 LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k, std::size_t i,
-                                const Reflection* r, int count, float* pair_gradient) {
-  return table().lambda_with_images(a, k, i, r, count, pair_gradient);
+                                const Reflection* r, int count, float* pair_gradient,
+                                float* image_gradient) {
+  return table().lambda_with_images(a, k, i, r, count, pair_gradient, image_gradient);
+}
+
+VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Reflection& r,
+                             const float* lambda, const float* pair_gradient,
+                             const float* image_gradient) {
+  return table().delta_with_image(a, i, r, lambda, pair_gradient, image_gradient);
 }
 
 LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,

@@ -22,6 +22,7 @@ namespace pbf {
 class ContainerMirror;
 struct NeighborArrays;
 struct PairConstants;
+struct Reflection;
 class LatticeBoundary;
 class NeighborGrid;
 class SolidBoundaries;
@@ -127,8 +128,8 @@ class PbfSolver {
   SolidBoundaries boundaries() const;
   // The container's walls as mirror images (ContainerMirror.h); none without wall density.
   ContainerMirror containerMirror() const;
-  Eigen::Vector3f imagePush(const ContainerMirror& images, const NeighborArrays& arrays,
-                            const PairConstants& pc, std::size_t i) const;
+  Eigen::Vector3f imagePush(const NeighborArrays& arrays, const PairConstants& pc, std::size_t i,
+                            const Reflection* refl, int reflections, bool neighbour_images_done) const;
   // Where the particles can be during the attempt in progress (FluidReach.cpp): obstacles
   // whose reach misses it are left out of every per-particle boundary test.
   void updateFluidReach();
@@ -169,6 +170,8 @@ class PbfSolver {
   float lambda_sum_dt_ = 0.0f;               // dt of the step lambda_sum_ belongs to
   std::vector<float> scorr_scale_;          // per particle bound of the s_corr push
   std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass
+  std::vector<float> image_gradient_;        // same for the image pairs by one wall
+  std::vector<std::uint8_t> has_coincident_pair_;  // per particle, lambda -> delta p pass
   std::vector<Eigen::Vector3f> wall_gradient_;  // solids' part of grad C, lambda -> delta p
   std::vector<float> density_;
   std::vector<std::uint16_t> neighbor_count_;
