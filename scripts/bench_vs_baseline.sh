@@ -6,11 +6,17 @@
 # that load on a shared machine hits every build alike.
 #
 #   scripts/bench_vs_baseline.sh [--rounds N] [--native] [--filter REGEX] [--baseline REV]
+#   scripts/bench_vs_baseline.sh --dambreak-1m3 [--rounds N] [--seconds S] [--tolerances "T..."]
 #
 #   --rounds N      alternations (default 3); each run is a Google Benchmark with 3 repetitions
 #   --native        also build and time this tree with PBF_NATIVE=ON
 #   --filter REGEX  benchmark filter (default: the 20k dam-break step, 1 and 2 threads)
 #   --baseline REV  baseline commit (default e7d8d7f, the last main before issue 10)
+#   --dambreak-1m3  instead of the step benchmark: wall seconds per simulated second of the
+#                   1 m^3 dam break (config/scenes/dam_break_1m3.yaml, pbf_run, 2 threads) at
+#                   each density tolerance (the average density error each solver iterates
+#                   down to; default "0.0005 0.0001"), S simulated seconds (default 1), both
+#                   builds with their own shipped defaults otherwise, max_iterations 100
 #
 # Baseline recipe: `git worktree add --detach $BASE_DIR/src REV` (BASE_DIR: $PBF_BASELINE_DIR,
 # default ~/.cache/pbf_ros/baseline), then a plain Release configure of that tree into
@@ -24,13 +30,19 @@ ROUNDS=3
 NATIVE=0
 FILTER='BM_DamBreakStep/kparticles:20/threads:[12]/boundary:1'
 BASELINE=e7d8d7f
+MODE=step
+SECONDS_SIM=1
+TOLERANCES="0.0005 0.0001"
 while [ $# -gt 0 ]; do
   case "$1" in
     --rounds) ROUNDS="$2"; shift ;;
     --native) NATIVE=1 ;;
     --filter) FILTER="$2"; shift ;;
     --baseline) BASELINE="$2"; shift ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    --dambreak-1m3) MODE=dambreak ;;
+    --seconds) SECONDS_SIM="$2"; shift ;;
+    --tolerances) TOLERANCES="$2"; shift ;;
+    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
     *) echo "bench_vs_baseline.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -40,13 +52,16 @@ done
 # `roslaunch pbf_ros ...` find two of every launch file.
 BASE_DIR="${PBF_BASELINE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/pbf_ros/baseline}"
 OUT="$ROOT/build/bench_vs_baseline"
+[ "$MODE" = dambreak ] && OUT="$ROOT/build/bench_dambreak_1m3"
 mkdir -p "$BASE_DIR" "$OUT"
 
 # --- builds ---------------------------------------------------------------------------
-"$ROOT/scripts/build.sh" pbf_step_benchmark > "$OUT/build_current.log" 2>&1 || {
+TOOL=pbf_step_benchmark
+[ "$MODE" = dambreak ] && TOOL=pbf_run
+"$ROOT/scripts/build.sh" "$TOOL" > "$OUT/build_current.log" 2>&1 || {
   tail -30 "$OUT/build_current.log"; exit 1; }
 declare -A BIN
-BIN[current]="$ROOT/build/devel/lib/pbf_ros/pbf_step_benchmark"
+BIN[current]="$ROOT/build/devel/lib/pbf_ros/$TOOL"
 
 if [ ! -d "$BASE_DIR/src" ]; then
   git -C "$ROOT" worktree add --detach "$BASE_DIR/src" "$BASELINE" > /dev/null
@@ -54,27 +69,42 @@ fi
 git -C "$BASE_DIR/src" checkout --quiet --detach "$BASELINE"
 mkdir -p "$BASE_DIR/build/devel/lib/python3/dist-packages"
 cmake -S "$BASE_DIR/src" -B "$BASE_DIR/build" -DCMAKE_BUILD_TYPE=Release > "$OUT/build_baseline.log" 2>&1
-make -C "$BASE_DIR/build" -j"$(nproc)" pbf_step_benchmark >> "$OUT/build_baseline.log" 2>&1 || {
+make -C "$BASE_DIR/build" -j"$(nproc)" "$TOOL" >> "$OUT/build_baseline.log" 2>&1 || {
   tail -30 "$OUT/build_baseline.log"; exit 1; }
-BIN[baseline]="$BASE_DIR/build/devel/lib/pbf_ros/pbf_step_benchmark"
+BIN[baseline]="$BASE_DIR/build/devel/lib/pbf_ros/$TOOL"
 
 if [ "$NATIVE" = 1 ]; then
   N="$ROOT/build/native"
   mkdir -p "$N/devel/lib/python3/dist-packages"
   cmake -S "$ROOT" -B "$N" -DCMAKE_BUILD_TYPE=Release -DPBF_NATIVE=ON > "$OUT/build_native.log" 2>&1
-  make -C "$N" -j"$(nproc)" pbf_step_benchmark >> "$OUT/build_native.log" 2>&1 || {
+  make -C "$N" -j"$(nproc)" "$TOOL" >> "$OUT/build_native.log" 2>&1 || {
     tail -30 "$OUT/build_native.log"; exit 1; }
-  BIN[native]="$N/devel/lib/pbf_ros/pbf_step_benchmark"
+  BIN[native]="$N/devel/lib/pbf_ros/$TOOL"
 fi
 
 BUILDS="baseline current"
 [ "$NATIVE" = 1 ] && BUILDS="$BUILDS native"
-rm -f "$OUT"/*.json
+rm -f "$OUT"/*.json "$OUT"/*.txt
 
 # --- alternating runs -----------------------------------------------------------------
 # Sleep-waiting OpenMP threads, as the node's launch file uses.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 echo "[bench] load before: $(cut -d' ' -f1-3 /proc/loadavg)"
+if [ "$MODE" = dambreak ]; then
+  SCENE="$ROOT/config/scenes/dam_break_1m3.yaml"
+  for round in $(seq 1 "$ROUNDS"); do
+    for tol in $TOLERANCES; do
+      for build in $BUILDS; do
+        OMP_NUM_THREADS=2 "${BIN[$build]}" "$SCENE" --seconds "$SECONDS_SIM" \
+          --set density_tolerance="$tol" --set max_iterations=100 \
+          > "$OUT/${build}_tol${tol}_${round}.txt" 2>&1
+        echo "[bench] round $round, tolerance $tol: $build done"
+      done
+    done
+  done
+  echo "[bench] load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+  exec /usr/bin/python3 "$ROOT/scripts/dambreak_table.py" "$OUT" $BUILDS
+fi
 for round in $(seq 1 "$ROUNDS"); do
   for build in $BUILDS; do
     "${BIN[$build]}" --benchmark_filter="$FILTER" --benchmark_repetitions=3 \

@@ -209,7 +209,7 @@ void PbfSolver::computeScorrScales(const Scorr& scorr) {
   }
 }
 
-void PbfSolver::computeDeltas(LambdaPass pass) {
+void PbfSolver::correctPositions(LambdaPass pass) {
   const std::size_t n = size();
   const Kernels k(params_.supportRadius());
   const std::uint32_t* off = grid_->offsets().data();
@@ -230,6 +230,12 @@ void PbfSolver::computeDeltas(LambdaPass pass) {
   const bool walls = params_.wall_density;
   const ContainerMirror images = containerMirror();
   const PairConstants image_pc{k.h, k.h2, 0.0f, 0.0f, grad_scale * k.spiky_grad_coef, tiny2};
+  // The corrected positions go to a second buffer, projected onto the solids in the same
+  // pass (one pass and one barrier less per iteration); the neighbours still read the
+  // uncorrected ones. Wrench tracking keeps delta p apart, to attribute it to the solids.
+  const bool fused = !track_wrenches_;
+  const SolidBoundaries solids = boundaries();
+  if (fused) corrected_.resize(n);
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -272,11 +278,19 @@ void PbfSolver::computeDeltas(LambdaPass pass) {
       }
     }
     if (reflections > 0) dp += imagePush(arrays, image_pc, i, refl, reflections, neighbour_images_done);
-    delta_[i] = dp;
     if (sum_lambda) lambda_sum_[i] += li;
-    if (walls) delta_[i] += li * wall_gradient_[i];  // lambda_i times the solids' part of grad_i C_i
+    if (walls) dp += li * wall_gradient_[i];  // lambda_i times the solids' part of grad_i C_i
+    if (fused)
+      corrected_[i] = solids.project(predicted_[i] + dp);
+    else
+      delta_[i] = dp;
   }
-  if (track_wrenches_ && walls) recordBoundaryDensityPush(boundaries());
+  if (fused) {
+    predicted_.swap(corrected_);
+    return;
+  }
+  if (walls) recordBoundaryDensityPush(solids);
+  applyDeltasAndBoundary();
 }
 
 // The delta-p of particle i from the container's images: (lambda_i + lambda_j) grad W per

@@ -250,8 +250,7 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
     if (pass == LambdaPass::kNewton && use_tolerance && iter >= params_.min_iterations &&
         avg_error <= params_.density_tolerance)
       break;
-    computeDeltas(pass);
-    applyDeltasAndBoundary();
+    correctPositions(pass);
     ++iter;
     try {
       keepListsValidFor(predicted_, stats);

@@ -14,7 +14,7 @@
 namespace pbf {
 
 // The solids' share of the delta-p pass: lambda_i times each solid's part of grad_i C_i
-// (computeDeltas added their sum to delta_i). Run after that pass, so the pass itself is
+// (correctPositions added their sum to delta_i). Run after that pass, so the pass itself is
 // unchanged when nobody asks.
 // The container's share is its images' push (imagePush): each image belongs to the walls it
 // is reflected across, and each wall takes the push's component along its own axis. The

@@ -119,8 +119,9 @@ class PbfSolver {
   // the solve is to start from them.
   bool prepareWarmStart(float dt);
   struct Scorr;
-  // Delta p from the multipliers of the pass; a Newton pass adds them to lambda_sum_.
-  void computeDeltas(LambdaPass pass = LambdaPass::kNewton);
+  // Delta p from the multipliers of the pass, applied to the predictions and projected onto
+  // the solids; a Newton pass adds the multipliers to lambda_sum_.
+  void correctPositions(LambdaPass pass = LambdaPass::kNewton);
   void computeScorrScales(const Scorr& scorr);
   Eigen::Vector3f pairGradient(std::size_t i, std::uint32_t j) const;  // grad_i W, exact path
   void applyDeltasAndBoundary();
@@ -158,7 +159,8 @@ class PbfSolver {
   std::uint32_t next_id_ = 0;                // fresh ids for added particles
   // Per-step scratch, Jacobi style: each pass reads one array and writes another.
   std::vector<Eigen::Vector3f> predicted_;   // x*
-  std::vector<Eigen::Vector3f> delta_;       // delta p
+  std::vector<Eigen::Vector3f> delta_;       // delta p (wrench tracking, start of a step)
+  std::vector<Eigen::Vector3f> corrected_;   // the corrected predictions, swapped in
   std::vector<Eigen::Vector3f> new_velocity_;
   std::vector<Eigen::Vector3f> vorticity_;
   std::vector<float> vorticity_norm_;        // |omega| per particle (confinement)
