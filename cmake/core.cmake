@@ -10,8 +10,10 @@ foreach(variant base v3)
     PBF_NEIGHBOR_SUMS_NS=neighbor_sums_${variant})
   set_target_properties(pbf_neighbor_sums_${variant} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endforeach()
+# use_gather: gather instructions for the neighbours' positions (GCC's generic tuning builds
+# each from scalar loads; see NeighborSums.cpp).
 if(CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
-  target_compile_options(pbf_neighbor_sums_v3 PRIVATE -march=x86-64-v3)
+  target_compile_options(pbf_neighbor_sums_v3 PRIVATE -march=x86-64-v3 -mtune-ctrl=use_gather)
 endif()
 
 add_library(pbf_core

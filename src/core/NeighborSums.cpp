@@ -17,11 +17,15 @@ namespace PBF_NEIGHBOR_SUMS_NS {
 
 // Every loop below is branch-free over the neighbour list (masks instead of `if`), so the
 // compiler vectorises it; the order of the additions is the compiler's, identical for every
-// thread count (each particle's sum is computed by one thread). Two details GCC needs (check
+// thread count (each particle's sum is computed by one thread). Details GCC needs (check
 // with -fopt-info-vec): a size_t loop index (with a 32-bit one, the store to pair_gradient
-// stops vectorisation: the wrapping index makes the addresses non-affine), and
+// stops vectorisation: the wrapping index makes the addresses non-affine);
 // -fno-trapping-math for this file (cmake/core.cmake) so that the division behind the
-// coincident-pair mask may run in every lane; NaN and Inf still propagate.
+// coincident-pair mask may run in every lane (NaN and Inf still propagate); and a signed
+// neighbour index with -mtune-ctrl=use_gather (cmake/core.cmake) for the AVX2 build to load
+// the neighbours with gather instructions: an unsigned 3 j may wrap, which a gather's signed
+// 32-bit offsets cannot express, and GCC's generic tuning otherwise assembles each gather
+// from eight scalar loads (12 % of a 20k step on Zen 3).
 
 LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                       float* pair_gradient) {
@@ -34,7 +38,7 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
   int coincident = 0;
 #pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
     const float r2 = dx * dx + dy * dy + dz * dz;
     const float rlen = std::sqrt(r2);
@@ -61,7 +65,7 @@ VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
   float sx = 0.0f, sy = 0.0f, sz = 0.0f;
 #pragma omp simd reduction(+ : sx, sy, sz)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
     const float g = (li + lambda[j]) * pair_gradient[e];
     sx += g * dx;
@@ -81,7 +85,7 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
   std::uint32_t count = 0;
 #pragma omp simd reduction(+ : rho, count)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
     const float r2 = dx * dx + dy * dy + dz * dz;
     const float dl = std::max(h - std::sqrt(r2), 0.0f);
@@ -103,7 +107,7 @@ VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t 
   float sx = 0.0f, sy = 0.0f, sz = 0.0f;
 #pragma omp simd reduction(+ : sx, sy, sz)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
     const float w = std::max(h2 - (dx * dx + dy * dy + dz * dz), 0.0f);
     const float f = poly6 * w * w * w / density[j];  // V_j W_ij
@@ -150,7 +154,7 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
   int coincident = 0;
 #pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
     const float dx = xi - x, dy = yi - y, dz = zi - z;
     const float r2 = dx * dx + dy * dy + dz * dz;
@@ -187,7 +191,7 @@ LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k,
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
   for (std::size_t e = a.offset[i]; e < a.offset[i + 1]; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
     const float dx = xi - x, dy = yi - y, dz = zi - z;
     const float r2 = dx * dx + dy * dy + dz * dz;
@@ -233,7 +237,7 @@ LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std:
   int coincident = 0;
 #pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
     const float dx = o.dx(x, y, z), dy = o.dy(x, y, z), dz = o.dz(x, y, z);
     const float r2 = dx * dx + dy * dy + dz * dz;
@@ -263,7 +267,7 @@ VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::s
   int coincident = 0;
 #pragma omp simd reduction(+ : sx, sy, sz, coincident)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
     const float dx = o.dx(x, y, z), dy = o.dy(x, y, z), dz = o.dz(x, y, z);
     const float r2 = dx * dx + dy * dy + dz * dz;
@@ -290,7 +294,7 @@ VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Refle
   float sx = 0.0f, sy = 0.0f, sz = 0.0f;
 #pragma omp simd reduction(+ : sx, sy, sz)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
     const float lij = li + lambda[j];
     const float g = lij * pair_gradient[e], gi = lij * image_gradient[e];
@@ -313,7 +317,7 @@ DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std
   std::uint32_t count = 0;
 #pragma omp simd reduction(+ : rho, count)
   for (std::size_t e = begin; e < end; ++e) {
-    const std::uint32_t j = nbr[e];
+    const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
     const float dx = o.dx(x, y, z), dy = o.dy(x, y, z), dz = o.dz(x, y, z);
     const float r2 = dx * dx + dy * dy + dz * dz;
