@@ -25,8 +25,11 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
+# The workspace's setup script reads unset variables (ROS_DISTRO): source it without -u.
+set +u
 # shellcheck disable=SC1091
 source "$ROOT/build/devel/setup.bash"
+set -u
 LOG="$ROOT/build/measure_node_rtf"
 mkdir -p "$LOG"
 

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstring>
 #include <boost/make_shared.hpp>
+#include <pthread.h>
+#include <sched.h>
 #include <ros/package.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
@@ -77,6 +79,7 @@ SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh) {
   private_nh.param<std::string>("frame_id", s.domain_frame, s.domain_frame);
   private_nh.param<std::string>("camera_frame_id", s.camera_frame, s.camera_frame);
   private_nh.param("render_nice", s.nice, s.nice);
+  private_nh.param("render_idle_priority", s.idle_priority, s.idle_priority);
   return s;
 }
 
@@ -140,6 +143,7 @@ void SurfaceRenderThread::configure(const FluidConfig& config,
 }
 
 void SurfaceRenderThread::run() {
+  pthread_setname_np(pthread_self(), "pbf_render");  // for top -H, ps -L (and the tests)
   if (startup_.nice != 0) {
     // Linux: the nice value belongs to the thread; threads started from here inherit it.
     const pid_t tid = static_cast<pid_t>(syscall(SYS_gettid));
@@ -150,6 +154,15 @@ void SurfaceRenderThread::run() {
       ROS_WARN("pbf_node: cannot lower the render thread's priority (~render_nice %d): %s",
                startup_.nice, std::strerror(errno));
     }
+  }
+  if (startup_.idle_priority) {
+    // Inherited, like the nice value, by the GL threads created below.
+    sched_param param{};
+    param.sched_priority = 0;
+    const int err = pthread_setschedparam(pthread_self(), SCHED_IDLE, &param);
+    if (err != 0)
+      ROS_WARN("pbf_node: cannot give the render thread idle priority (~render_idle_priority): %s",
+               std::strerror(err));
   }
   std::unique_ptr<pbf::FluidRenderer> renderer;
   try {

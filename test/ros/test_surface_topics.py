@@ -5,6 +5,7 @@ the image; the camera frame is on tf and looks at the container; a render-only r
 changes the image and leaves the simulation alone; a paused fluid is not rendered over and
 over; a camera position set by hand replaces the automatic camera."""
 import math
+import os
 import struct
 import subprocess
 import threading
@@ -83,6 +84,21 @@ def rotate(q, v):
     return tuple(v[i] + 2.0 * w * ux[i] + 2.0 * uux[i] for i in range(3))
 
 
+def node_pid():
+    """The process of this test's pbf_node (named `fluid`)."""
+    for entry in os.listdir('/proc'):
+        if not entry.isdigit():
+            continue
+        try:
+            with open('/proc/%s/cmdline' % entry, 'rb') as f:
+                args = f.read().split(b'\0')
+        except OSError:
+            continue
+        if any(a.endswith(b'/pbf_node') for a in args) and b'__name:=fluid' in args:
+            return int(entry)
+    raise AssertionError('no pbf_node process named fluid')
+
+
 class SurfaceTopicsTest(unittest.TestCase):
 
     def test_01_no_subscriber_means_no_render_work(self):
@@ -145,6 +161,25 @@ class SurfaceTopicsTest(unittest.TestCase):
         finally:
             surface.close()
             stats.close()
+
+    def test_02b_render_threads_yield_the_cpu_to_the_solver(self):
+        # ~render_idle_priority (default): the render thread and the GL threads it started
+        # run at SCHED_IDLE; the node's other threads (the solver's) do not.
+        surface = ByStamp()
+        try:
+            surface.complete_set(timeout=25.0)  # the renderer is up and has drawn
+            pid = node_pid()
+            policies = {}
+            for tid in os.listdir('/proc/%d/task' % pid):
+                with open('/proc/%d/task/%s/comm' % (pid, tid)) as f:
+                    policies.setdefault(f.read().strip(), []).append(os.sched_getscheduler(int(tid)))
+            self.assertIn('pbf_render', policies, 'the render thread is named')
+            render = [n for n in policies if n == 'pbf_render' or n.startswith('llvmpipe')]
+            for name in render:
+                self.assertEqual(set(policies[name]), {os.SCHED_IDLE}, name)
+            self.assertEqual(policies['pbf_node'][0], os.SCHED_OTHER, 'the main thread')
+        finally:
+            surface.close()
 
     def test_03_camera_frame_on_tf_looks_at_the_container(self):
         tf_static = Latest('/tf_static', TFMessage)
