@@ -1,6 +1,7 @@
 // Start-up of pbf_node: settings, scene, solver, ROS interface, then the simulation thread.
 #include "pbf_ros/ros/FluidNode.h"
 
+#include <omp.h>
 #include <rosgraph_msgs/Clock.h>
 #include <stdexcept>
 #include <visualization_msgs/MarkerArray.h>
@@ -81,7 +82,16 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (!invalid.empty()) throw std::runtime_error("unusable solver parameters: " + invalid);
 
   advertise();
+  // Built on this thread (the node's main thread, or the nodelet manager's) with a single
+  // OpenMP thread. A thread that runs a parallel region keeps an OpenMP pool of its own, and
+  // libgomp counts that pool's idle worker as one of its threads: with more threads than
+  // cores it cuts the spin before sleeping at a barrier (GOMP_SPINCOUNT, fluid.launch) to
+  // 1000 iterations, and the simulation thread's steps lost the 16 % that spin saves. The
+  // set-up's loops are short. (Later rebuilds run on the simulation thread.)
+  const int openmp_threads = omp_get_max_threads();
+  omp_set_num_threads(1);
   const std::string error = rebuildFluid(scene, params);
+  omp_set_num_threads(openmp_threads);
   if (!error.empty()) throw std::runtime_error("cannot build the fluid: " + error);
   applied_scene_ = scene_without_robot_;
   pacer_.setFactor(config.real_time_factor);
