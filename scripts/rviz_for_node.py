@@ -4,8 +4,9 @@
 The shipped config is written for the default node /fluid. This fills in the node's own
 topics (a node started with another name or in a namespace), sets the particle size to the
 running fluid's particle spacing, subscribes to the cloud over TCP (reliable), and keeps the
-surface image displays only when asked: rendering the surface costs the simulation about
-half its real-time factor on a small machine. They are removed rather than unticked: rviz
+surface image displays only when asked: rendering the surface for rviz costs the simulation
+about half its real-time factor on a small machine (fluid.launch surface:=true lets the
+renderer share the CPU; README "Performance"). They are removed rather than unticked: rviz
 1.14 re-enables an image display whose panel its saved window state shows, and subscribes.
 
   rviz_for_node.py [--node NAME] [--surface true|false] [--spacing METRES]
