@@ -3,7 +3,7 @@
 # (real_time_factor:=0), in three set-ups, one after the other (README "Performance"):
 #   headless   nothing subscribed but ~stats
 #   cloud      ~particles subscribed (rostopic hz: receives every message, does not parse it)
-#   surface    ~particles and the rendered colour image subscribed (surface:=true)
+#   surface    ~particles and the rendered colour image subscribed
 # Each: launch, wait WARMUP s, then measure_rtf.py over SECONDS s, then shut down.
 #
 #   scripts/measure_node_rtf.sh [--warmup S] [--seconds S] [--only "headless cloud surface"]
@@ -12,8 +12,8 @@
 # --node-bin runs another build's pbf_node binary instead of this package's (e.g. the
 # baseline's, built by scripts/bench_vs_baseline.sh's recipe with
 # `make pbf_node pbf_ros_generate_messages_py`) under its own roscore, with the parameters of
-# YAML (that build's config/fluid_defaults.yaml) and OMP_WAIT_POLICY=passive, as fluid.launch
-# runs this one; its ~stats are read with that build's message definition. --image-topic:
+# YAML (that build's config/fluid_defaults.yaml) and OMP_WAIT_POLICY=passive, as the
+# baseline's fluid.launch ran it; its ~stats are read with that build's message definition. --image-topic:
 # the colour image to subscribe (default /fluid/rgb/image_rect_color; the baseline e7d8d7f
 # called it /fluid/surface/image_raw).
 # Needs the workspace built (scripts/build.sh) and no other ROS master on the default port.
@@ -34,7 +34,7 @@ while [ $# -gt 0 ]; do
     --node-bin) NODE_BIN="$2"; shift ;;
     --params) PARAMS="$2"; shift ;;
     --image-topic) IMAGE_TOPIC="$2"; shift ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
     *) echo "measure_node_rtf.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
