@@ -14,7 +14,11 @@ template <typename F>
 inline double deterministicSum(std::size_t n, F f) {
   constexpr std::size_t kChunk = 2048;
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
-  std::vector<double> partial(chunks, 0.0);
+  // Kept between calls: no allocation per call. The reference, taken here, is the calling
+  // thread's vector; inside the loop `kept` would name each worker's own.
+  thread_local std::vector<double> kept;
+  std::vector<double>& partial = kept;
+  partial.assign(chunks, 0.0);
 #pragma omp parallel for schedule(static)
   for (std::size_t c = 0; c < chunks; ++c) {
     double s = 0.0;

@@ -102,7 +102,8 @@ const std::vector<std::uint32_t>& NeighborGrid::build(const std::vector<Eigen::V
   order_.resize(n);
   point_cell_.resize(n);
   {
-    std::vector<std::uint32_t> next(cell_start_.begin(), cell_start_.end() - 1);
+    std::vector<std::uint32_t>& next = next_slot_;
+    next.assign(cell_start_.begin(), cell_start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) {
       const std::uint32_t dense = unsorted_cell_[i];
       const std::uint32_t slot = next[rank_[dense]]++;
@@ -126,8 +127,8 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
   // the buffers are then concatenated in block order, so the CSR arrays are identical for
   // any thread count.
   offsets_.resize(n + 1);
-  auto& buffers = thread_lists_;
-  std::vector<std::size_t> block_base;
+  auto& scratch = thread_scratch_;
+  auto& block_base = block_base_;
   std::atomic<bool> too_many{false};
 
 #pragma omp parallel
@@ -136,12 +137,12 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
     const int nt = omp_get_num_threads();
 #pragma omp single
     {
-      buffers.resize(nt);
+      scratch.resize(nt);
       thread_filled_.assign(nt, 0);
       block_base.assign(nt + 1, 0);
     }
     const std::size_t begin = n * t / nt, end = n * (t + 1) / nt;
-    auto& buf = buffers[t];
+    auto& buf = scratch[t].list;
     // buf's size is its capacity: growing it by resize() would zero every candidate slot of
     // every particle first (27 cells of candidates, ~40 kept); `used` is the filled part.
     if (buf.size() < (end - begin) * 48) buf.resize((end - begin) * 48);
@@ -149,8 +150,8 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
     // All particles of a cell share their 27-cell candidate set: gather it once per cell
     // into a contiguous local copy (ascending index), then test every particle of the cell
     // against it (CandidateFilter.h: eight candidates at a time where the CPU can).
-    std::vector<std::uint32_t> cand;
-    std::vector<float> cx, cy, cz;
+    std::vector<std::uint32_t>& cand = scratch[t].candidates;
+    std::vector<float>&cx = scratch[t].x, &cy = scratch[t].y, &cz = scratch[t].z;
     std::size_t i = begin;
     while (i < end && !too_many.load(std::memory_order_relaxed)) {
       const std::uint32_t dense = point_cell_[i];

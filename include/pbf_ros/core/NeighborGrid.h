@@ -54,9 +54,16 @@ class NeighborGrid {
   std::vector<std::uint32_t> order_;
   std::vector<std::uint32_t> offsets_, indices_;
   std::vector<std::uint32_t> unsorted_cell_;  // scratch
-  // Per-thread list buffers of findNeighbors, kept between calls: no allocation per step.
-  std::vector<std::vector<std::uint32_t>> thread_lists_;
-  std::vector<std::size_t> thread_filled_;  // filled entries of each
+  // Per-thread buffers of findNeighbors, kept between calls: no allocation per step.
+  struct ThreadScratch {
+    std::vector<std::uint32_t> list;       // the thread's block of neighbour lists
+    std::vector<std::uint32_t> candidates;  // one cell's candidate set
+    std::vector<float> x, y, z;             // and their positions
+  };
+  std::vector<ThreadScratch> thread_scratch_;
+  std::vector<std::size_t> thread_filled_;  // filled entries of each list
+  std::vector<std::size_t> block_base_;     // where each thread's block starts
+  std::vector<std::uint32_t> next_slot_;    // build()'s counting sort
 };
 
 }  // namespace pbf
