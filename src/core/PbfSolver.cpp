@@ -278,12 +278,12 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
 
   t = Clock::now();
   enforceSpeedLimit(dt, stats);
-  if (params_.vorticity_epsilon <= 0.0f) stats.skipped_stages.push_back("vorticity");
-  if (params_.xsph_viscosity <= 0.0f) stats.skipped_stages.push_back("xsph");
-  if (params_.scorr_k <= 0.0f) stats.skipped_stages.push_back("scorr");
-  if (stats.neighbor_lists_reused) stats.skipped_stages.push_back("neighbor_search");
+  if (params_.vorticity_epsilon <= 0.0f) stats.skipped_stages.add(SkippedStages::kVorticity);
+  if (params_.xsph_viscosity <= 0.0f) stats.skipped_stages.add(SkippedStages::kXsph);
+  if (params_.scorr_k <= 0.0f) stats.skipped_stages.add(SkippedStages::kScorr);
+  if (stats.neighbor_lists_reused) stats.skipped_stages.add(SkippedStages::kNeighborSearch);
   if (use_tolerance && stats.iterations < params_.max_iterations)
-    stats.skipped_stages.push_back("iterations_after_tolerance");
+    stats.skipped_stages.add(SkippedStages::kIterationsAfterTolerance);
   const bool finite = stateIsFinite();
   if (finite) gatherStats(stats);
   stats.times.other_ms += msSince(t);

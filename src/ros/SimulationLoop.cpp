@@ -106,7 +106,7 @@ void FluidNode::stepOnce() {
     publishFloatingPoses();
     applySources(last_stats_.dt);  // the particle count may change here, between steps
   }
-  if (!solver_->wrenchTracking()) last_stats_.skipped_stages.push_back("wrench");
+  if (!solver_->wrenchTracking()) last_stats_.skipped_stages.add(pbf::SkippedStages::kWrench);
   sim_clock_ += solver_->time() - time_before;
   ++state_version_;
   nan_recoveries_ += static_cast<std::uint32_t>(last_stats_.nan_retries);

@@ -46,7 +46,7 @@ SimulationStats toStatsMessage(const pbf::StepStats& stats, const StatsContext& 
   msg.particles_drained = context.particles_drained;
   msg.particle_mass = finiteOr0(context.particle_mass);
   msg.fluid_mass = finiteOr0(context.particle_mass * context.particle_count);
-  msg.skipped_stages = stats.skipped_stages;
+  msg.skipped_stages = stats.skipped_stages.names();
   if (context.cloud_skipped) msg.skipped_stages.push_back("cloud");
   if (context.render_skipped) msg.skipped_stages.push_back("surface");
   return msg;

@@ -20,7 +20,7 @@ TEST(StatsConversion, CopiesTheStepAndAddsTheNodeContext) {
   s.neighbor_lists_reused = true;
   s.times.solve_ms = 1.5;
   s.times.total_ms = 3.0;
-  s.skipped_stages = {"vorticity"};
+  s.skipped_stages.add(pbf::SkippedStages::kVorticity);
   pbf_ros::StatsContext c;
   c.frame_id = "fluid_domain";
   c.sim_time = 1.25;

@@ -16,6 +16,35 @@ struct StageTimes {
   double total_ms = 0.0;
 };
 
+// The stages a step skipped because the scene does not need them, as flags: a step
+// allocates nothing for them; names() gives the strings the stats message carries.
+class SkippedStages {
+ public:
+  enum Stage : std::uint32_t {
+    kVorticity = 1u << 0,
+    kXsph = 1u << 1,
+    kScorr = 1u << 2,
+    kNeighborSearch = 1u << 3,            // lists reused within the skin
+    kIterationsAfterTolerance = 1u << 4,  // the tolerance was met before max_iterations
+    kWrench = 1u << 5,                    // no wrench measured (set by the node)
+  };
+  void add(Stage stage) { bits_ |= stage; }
+  bool has(Stage stage) const { return (bits_ & stage) != 0; }
+  // In the order above: "vorticity", "xsph", "scorr", "neighbor_search",
+  // "iterations_after_tolerance", "wrench".
+  std::vector<std::string> names() const {
+    static const char* const kNames[] = {"vorticity",  "xsph", "scorr", "neighbor_search",
+                                         "iterations_after_tolerance", "wrench"};
+    std::vector<std::string> out;
+    for (std::uint32_t k = 0; k < sizeof(kNames) / sizeof(kNames[0]); ++k)
+      if (bits_ & (1u << k)) out.emplace_back(kNames[k]);
+    return out;
+  }
+
+ private:
+  std::uint32_t bits_ = 0;
+};
+
 struct StepStats {
   std::uint32_t particle_count = 0;
   double dt = 0.0;                       // time step actually taken [s]
@@ -33,7 +62,7 @@ struct StepStats {
   std::size_t grid_cells = 0;            // cells of the neighbour grid (it covers the fluid)
   bool speed_limited = false;            // the max_speed_factor cap acted this step
   StageTimes times;
-  std::vector<std::string> skipped_stages;  // e.g. "vorticity", "xsph", "scorr"
+  SkippedStages skipped_stages;
 };
 
 }  // namespace pbf
