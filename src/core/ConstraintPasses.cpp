@@ -290,7 +290,7 @@ void PbfSolver::correctPositions(LambdaPass pass) {
     return;
   }
   if (walls) recordBoundaryDensityPush(solids);
-  applyDeltasAndBoundary();
+  applyDeltasRecordingBoundary(solids);  // not fused: wrenches are tracked
 }
 
 // The delta-p of particle i from the container's images: (lambda_i + lambda_j) grad W per
