@@ -7,6 +7,7 @@
 #
 #   scripts/bench_vs_baseline.sh [--rounds N] [--native] [--filter REGEX] [--baseline REV]
 #   scripts/bench_vs_baseline.sh --dambreak-1m3 [--rounds N] [--seconds S] [--tolerances "T..."]
+#                                [--warm-start]
 #
 #   --rounds N      alternations (default 3); each run is a Google Benchmark with 3 repetitions
 #   --native        also build and time this tree with PBF_NATIVE=ON
@@ -17,6 +18,7 @@
 #                   each density tolerance (the average density error each solver iterates
 #                   down to; default "0.0005 0.0001"), S simulated seconds (default 1), both
 #                   builds with their own shipped defaults otherwise, max_iterations 100
+#   --warm-start    (with --dambreak-1m3) also run this tree with warm_start: true ("warm")
 #
 # Baseline recipe: `git worktree add --detach $BASE_DIR/src REV` (BASE_DIR: $PBF_BASELINE_DIR,
 # default ~/.cache/pbf_ros/baseline), then a plain Release configure of that tree into
@@ -28,6 +30,7 @@ export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ROUNDS=3
 NATIVE=0
+WARM=0
 FILTER='BM_DamBreakStep/kparticles:20/threads:[12]/boundary:1'
 BASELINE=e7d8d7f
 MODE=step
@@ -37,12 +40,13 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --rounds) ROUNDS="$2"; shift ;;
     --native) NATIVE=1 ;;
+    --warm-start) WARM=1 ;;
     --filter) FILTER="$2"; shift ;;
     --baseline) BASELINE="$2"; shift ;;
     --dambreak-1m3) MODE=dambreak ;;
     --seconds) SECONDS_SIM="$2"; shift ;;
     --tolerances) TOLERANCES="$2"; shift ;;
-    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
     *) echo "bench_vs_baseline.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -84,6 +88,13 @@ fi
 
 BUILDS="baseline current"
 [ "$NATIVE" = 1 ] && BUILDS="$BUILDS native"
+declare -A EXTRA=([baseline]="" [current]="" [native]="")
+if [ "$WARM" = 1 ]; then
+  [ "$MODE" = dambreak ] || { echo "bench_vs_baseline.sh: --warm-start needs --dambreak-1m3" >&2; exit 2; }
+  BIN[warm]="${BIN[current]}"
+  EXTRA[warm]="--set warm_start=true"
+  BUILDS="$BUILDS warm"
+fi
 rm -f "$OUT"/*.json "$OUT"/*.txt
 
 # --- alternating runs -----------------------------------------------------------------
@@ -96,7 +107,7 @@ if [ "$MODE" = dambreak ]; then
     for tol in $TOLERANCES; do
       for build in $BUILDS; do
         OMP_NUM_THREADS=2 "${BIN[$build]}" "$SCENE" --seconds "$SECONDS_SIM" \
-          --set density_tolerance="$tol" --set max_iterations=100 \
+          --set density_tolerance="$tol" --set max_iterations=100 ${EXTRA[$build]} \
           > "$OUT/${build}_tol${tol}_${round}.txt" 2>&1
         echo "[bench] round $round, tolerance $tol: $build done"
       done

@@ -35,6 +35,15 @@ inline float scorrTimeScale(float dt) {
 // fraction of the spacing.
 constexpr float kMaxScorrShift = 0.1f;
 
+// A warm start applies pressure before the solve has seen this step's positions; where it
+// over-pushes, the fluid expands, and a compression-only pass would leave that expansion to
+// become velocity. So with a warm start the step's summed multiplier is projected instead
+// (kept <= 0: a particle can be pushed, or have its push taken back, never pulled), and the
+// tolerance applies to what is left to correct, compression and over-push alike. A Jacobi
+// pass that takes back in full oscillates (every neighbour takes back too, as every one
+// pushed); taking back half is IISPH's relaxed Jacobi (omega = 0.5, Ihmsen et al. 2014).
+// Pushes stay unrelaxed, as in the cold solve, whose overshoot the projection now absorbs.
+constexpr float kReleaseRelaxation = 0.5f;
 
 }  // namespace
 
@@ -80,6 +89,9 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   float* GI = image_gradient_.data();
   has_coincident_pair_.resize(n);
   if (walls) wall_gradient_.resize(n);
+  // A warm-started solve may take back what it pushed (see kReleaseRelaxation).
+  const bool projected = params_.warm_start && unilateral;
+  if (projected) complementarity_residual_.resize(n);
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -130,9 +142,25 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       continue;
     }
     float c = rho * inv_rho0 - 1.0f;
-    if (unilateral) c = std::max(c, 0.0f);
     const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
+    if (projected) {  // the step's summed multiplier stays <= 0: push, or take a push back
+      const float before = lambda_sum_[i];
+      float step = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
+      if (step > 0.0f) step *= kReleaseRelaxation;
+      lambda_[i] = std::min(before + step, 0.0f) - before;
+      // What is left to correct: the compression, or the expansion that a push caused.
+      complementarity_residual_[i] = c > 0.0f ? c : std::min(-c, -before * denom);
+      continue;
+    }
+    if (unilateral) c = std::max(c, 0.0f);
     lambda_[i] = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
+  }
+  if (projected && pass == LambdaPass::kNewton) {
+    avg_error = static_cast<float>(
+        deterministicSum(n, [&](std::size_t i) {
+          return static_cast<double>(complementarity_residual_[i]);
+        }) / std::max<std::size_t>(n, 1));
+    return;
   }
   avg_error = static_cast<float>(
       deterministicSum(n, [&](std::size_t i) {

@@ -21,13 +21,11 @@ double msSince(Clock::time_point t0) {
 }
 
 // The warm start applies half of the previous step's summed multiplier, as IISPH starts
-// from half the previous pressure (Ihmsen et al. 2014). Not all of it: the Jacobi passes
-// correct only compression and overlap (neighbours' corrections add up), so their sum
-// overshoots the pressure that holds the fluid; applied in full, that surplus has no pass
-// to take it back and becomes velocity (a resting tank's level rose by 100 %). Letting
-// later passes take back a push (a projected, bilateral-within-the-step multiplier) made
-// the Jacobi iteration oscillate instead, unless damped so much that it lost more than the
-// warm start gained (README "Calibration", warm start).
+// from half the previous pressure (Ihmsen et al. 2014). Not all of it: the unrelaxed Jacobi
+// pushes overshoot (neighbours' corrections add up), so their sum exceeds the pressure that
+// holds the fluid; applied in full, a resting tank's level rose by 17 % even with the
+// projected solve that takes over-pushes back (ConstraintPasses.cpp), because within the
+// tolerance the surplus still becomes velocity (README "Calibration", warm start).
 constexpr float kWarmStartFraction = 0.5f;
 
 }  // namespace

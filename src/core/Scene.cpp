@@ -127,6 +127,7 @@ const std::map<std::string, Setter>& solverSetters() {
     f("density_tolerance", &SolverParams::density_tolerance);
     f("cfm_relaxation", &SolverParams::cfm_relaxation);
     b("unilateral_constraint", &SolverParams::unilateral_constraint);
+    b("warm_start", &SolverParams::warm_start);
     f("scorr_k", &SolverParams::scorr_k);
     f("scorr_n", &SolverParams::scorr_n);
     f("scorr_delta_q", &SolverParams::scorr_delta_q);

@@ -25,6 +25,7 @@ void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
   c.density_tolerance = p.density_tolerance;
   c.cfm_relaxation = p.cfm_relaxation;
   c.unilateral_constraint = p.unilateral_constraint;
+  c.warm_start = p.warm_start;
   c.wall_density = p.wall_density;
   c.wall_friction = p.wall_friction;
   c.scorr_k = p.scorr_k;
@@ -54,6 +55,7 @@ pbf::SolverParams configToSolverParams(const FluidConfig& c, pbf::SolverParams b
   p.density_tolerance = static_cast<float>(c.density_tolerance);
   p.cfm_relaxation = static_cast<float>(c.cfm_relaxation);
   p.unilateral_constraint = c.unilateral_constraint;
+  p.warm_start = c.warm_start;
   p.wall_density = c.wall_density;
   p.wall_friction = static_cast<float>(c.wall_friction);
   p.scorr_k = static_cast<float>(c.scorr_k);

@@ -25,6 +25,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   p.max_iterations = 7;
   p.adaptive_time_step = false;
   p.unilateral_constraint = false;
+  p.warm_start = true;
   p.wall_density = false;
   p.wall_friction = 0.4f;
   p.scorr_k = 0.1f;
@@ -40,6 +41,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   EXPECT_EQ(q.max_iterations, 7);
   EXPECT_FALSE(q.adaptive_time_step);
   EXPECT_FALSE(q.unilateral_constraint);
+  EXPECT_TRUE(q.warm_start);
   EXPECT_FALSE(q.wall_density);
   EXPECT_FLOAT_EQ(q.wall_friction, 0.4f);
   EXPECT_FLOAT_EQ(q.scorr_k, 0.1f);

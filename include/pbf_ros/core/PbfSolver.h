@@ -169,6 +169,7 @@ class PbfSolver {
   // Sum of the multipliers applied so far in this step (kept by each particle across steps:
   // the warm start of the next).
   std::vector<float> lambda_sum_;
+  std::vector<float> complementarity_residual_;  // warm start: what is left to correct
   float lambda_sum_dt_ = 0.0f;               // dt of the step lambda_sum_ belongs to
   std::vector<float> scorr_scale_;          // per particle bound of the s_corr push
   std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass

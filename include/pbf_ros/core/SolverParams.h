@@ -43,11 +43,12 @@ struct SolverParams {
   float cfm_relaxation = 0.1f;
   // Warm start: each step's solve begins by applying half the previous step's summed
   // multiplier of every particle (as IISPH starts from half the previous pressure; rescaled
-  // by (dt/dt_prev)^2, since the pressure it stands for is lambda / dt^2). That first
-  // correction counts as an iteration. Experimental, for the solver's own studies (pbf_bench
-  // --only warmstart): not a scene key nor a ROS parameter, because what it over-pushes is
-  // never taken back and the shipped dam break blows up at the far wall with it (at 0.3 %
-  // and at 0.1 % tolerance; README "Calibration").
+  // by (dt/dt_prev)^2, since the pressure it stands for is lambda / dt^2); that first
+  // correction counts as an iteration. The solve then keeps each particle's summed
+  // multiplier projected (a push can be taken back, at IISPH's relaxation of one half), and
+  // density_tolerance bounds what is left to correct: compression and over-push. Off by
+  // default: at the shipped tolerance it halves the density error at the same cost instead
+  // of saving iterations; it pays at tight tolerances (README "Calibration", warm start).
   bool warm_start = false;
   // C = max(rho/rho0 - 1, 0): only compression is corrected, so surface particles with
   // missing neighbours are not pulled together (no clumping). Off: the seed's C = rho/rho0 - 1.
