@@ -22,6 +22,7 @@ add_library(pbf_core
   src/core/PbfSolver.cpp
   src/core/SolverNeighbors.cpp
   src/core/ConstraintPasses.cpp
+  src/core/ChebyshevAcceleration.cpp
   src/core/VelocityPasses.cpp
   src/core/StepGuards.cpp
   src/core/NeighborSumsDispatch.cpp

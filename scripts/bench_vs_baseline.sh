@@ -18,7 +18,8 @@
 #                   each density tolerance (the average density error each solver iterates
 #                   down to; default "0.0005 0.0001"), S simulated seconds (default 1), both
 #                   builds with their own shipped defaults otherwise, max_iterations 100
-#   --warm-start    (with --dambreak-1m3) also run this tree with warm_start: true ("warm")
+#   --warm-start    (with --dambreak-1m3) also run this tree with warm_start: true ("warm"),
+#                   and with that and chebyshev_rho: 0.9 ("warm_cheb")
 #
 # Baseline recipe: `git worktree add --detach $BASE_DIR/src REV` (BASE_DIR: $PBF_BASELINE_DIR,
 # default ~/.cache/pbf_ros/baseline), then a plain Release configure of that tree into
@@ -46,7 +47,7 @@ while [ $# -gt 0 ]; do
     --dambreak-1m3) MODE=dambreak ;;
     --seconds) SECONDS_SIM="$2"; shift ;;
     --tolerances) TOLERANCES="$2"; shift ;;
-    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,28p' "$0"; exit 0 ;;
     *) echo "bench_vs_baseline.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -92,8 +93,10 @@ declare -A EXTRA=([baseline]="" [current]="" [native]="")
 if [ "$WARM" = 1 ]; then
   [ "$MODE" = dambreak ] || { echo "bench_vs_baseline.sh: --warm-start needs --dambreak-1m3" >&2; exit 2; }
   BIN[warm]="${BIN[current]}"
+  BIN[warm_cheb]="${BIN[current]}"
   EXTRA[warm]="--set warm_start=true"
-  BUILDS="$BUILDS warm"
+  EXTRA[warm_cheb]="--set warm_start=true --set chebyshev_rho=0.9"
+  BUILDS="$BUILDS warm warm_cheb"
 fi
 rm -f "$OUT"/*.json "$OUT"/*.txt
 

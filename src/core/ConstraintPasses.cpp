@@ -89,8 +89,8 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   float* GI = image_gradient_.data();
   has_coincident_pair_.resize(n);
   if (walls) wall_gradient_.resize(n);
-  // A warm-started solve may take back what it pushed (see kReleaseRelaxation).
-  const bool projected = params_.warm_start && unilateral;
+  // A warm-started or accelerated solve may take back what it pushed (kReleaseRelaxation).
+  const bool projected = params_.projectedSolve();
   if (projected) complementarity_residual_.resize(n);
 
 #pragma omp parallel for schedule(static)

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "pbf_ros/core/Boundaries.h"
+#include "pbf_ros/core/ChebyshevAcceleration.h"
 #include "pbf_ros/core/LatticeBoundary.h"
 #include "pbf_ros/core/NeighborGrid.h"
 
@@ -32,6 +34,7 @@ constexpr float kWarmStartFraction = 0.5f;
 
 PbfSolver::PbfSolver()
     : grid_(std::make_unique<NeighborGrid>()),
+      chebyshev_(std::make_unique<ChebyshevAcceleration>()),
       lattice_(std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius())) {}
 PbfSolver::~PbfSolver() = default;
 
@@ -235,6 +238,8 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   const bool use_tolerance = params_.density_tolerance > 0.0f;
   int iter = 0;
   stats.warm_started = prepareWarmStart(dt);
+  chebyshev_->begin(predicted_, params_.chebyshev_rho);
+  float previous_error = std::numeric_limits<float>::infinity();
   while (iter < params_.max_iterations) {
     // With a warm start the first correction applies the previous step's pressure with this
     // step's gradients: the one correction a Jacobi step cannot make itself, because it
@@ -245,10 +250,13 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
     computeLambdas(avg_error, pass);
     if (!std::isfinite(avg_error)) return false;
     if (iter == 0) stats.initial_density_error = avg_error;
+    if (pass == LambdaPass::kNewton && avg_error > previous_error) chebyshev_->restart();
+    previous_error = avg_error;
     if (pass == LambdaPass::kNewton && use_tolerance && iter >= params_.min_iterations &&
         avg_error <= params_.density_tolerance)
       break;
     correctPositions(pass);
+    if (chebyshev_->isOn()) chebyshev_->extrapolate(predicted_, boundaries());
     ++iter;
     try {
       keepListsValidFor(predicted_, stats);
@@ -256,6 +264,7 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
       return false;
     }
   }
+  chebyshev_->end();
   stats.iterations = iter;
   stats.grid_cells = grid_->cellCount();
   stats.times.solve_ms += msSince(t);

@@ -128,6 +128,7 @@ const std::map<std::string, Setter>& solverSetters() {
     f("cfm_relaxation", &SolverParams::cfm_relaxation);
     b("unilateral_constraint", &SolverParams::unilateral_constraint);
     b("warm_start", &SolverParams::warm_start);
+    f("chebyshev_rho", &SolverParams::chebyshev_rho);
     f("scorr_k", &SolverParams::scorr_k);
     f("scorr_n", &SolverParams::scorr_n);
     f("scorr_delta_q", &SolverParams::scorr_delta_q);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pbf_ros/core/ChebyshevAcceleration.h"
 #include "pbf_ros/core/NeighborGrid.h"
 
 // Neighbour lists: built on a Morton-sorted grid, reused within the skin, and rebuilt as
@@ -26,6 +27,7 @@ void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
   permute(predicted_, reorder_scratch_);
   permute(id_, reorder_id_scratch_);
   permute(lambda_sum_, reorder_float_scratch_);  // the warm start follows its particle
+  chebyshev_->reorder(order, reorder_scratch_);   // mid-solve rebuilds only
 }
 
 // Reused lists stay exact while every particle is within half the skin of where it was at

@@ -59,6 +59,8 @@ std::string SolverParams::validate() const {
         << "too for fewer)";
   if (err.tellp() == 0) nonNegative("density_tolerance", density_tolerance);
   if (err.tellp() == 0) nonNegative("cfm_relaxation", cfm_relaxation);
+  if (err.tellp() == 0 && !(finite(chebyshev_rho) && chebyshev_rho >= 0.0f && chebyshev_rho <= 0.99f))
+    err << "chebyshev_rho must be in [0, 0.99] (0: off; got " << chebyshev_rho << ")";
   if (err.tellp() == 0) nonNegative("scorr_k", scorr_k);
   if (err.tellp() == 0 && !(finite(scorr_n) && scorr_n >= 1.0f && scorr_n <= 16.0f))
     err << "scorr_n must be in [1, 16] (got " << scorr_n << ")";

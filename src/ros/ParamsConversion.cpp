@@ -26,6 +26,7 @@ void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
   c.cfm_relaxation = p.cfm_relaxation;
   c.unilateral_constraint = p.unilateral_constraint;
   c.warm_start = p.warm_start;
+  c.chebyshev_rho = p.chebyshev_rho;
   c.wall_density = p.wall_density;
   c.wall_friction = p.wall_friction;
   c.scorr_k = p.scorr_k;
@@ -56,6 +57,7 @@ pbf::SolverParams configToSolverParams(const FluidConfig& c, pbf::SolverParams b
   p.cfm_relaxation = static_cast<float>(c.cfm_relaxation);
   p.unilateral_constraint = c.unilateral_constraint;
   p.warm_start = c.warm_start;
+  p.chebyshev_rho = static_cast<float>(c.chebyshev_rho);
   p.wall_density = c.wall_density;
   p.wall_friction = static_cast<float>(c.wall_friction);
   p.scorr_k = static_cast<float>(c.scorr_k);

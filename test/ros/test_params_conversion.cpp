@@ -26,6 +26,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   p.adaptive_time_step = false;
   p.unilateral_constraint = false;
   p.warm_start = true;
+  p.chebyshev_rho = 0.9f;
   p.wall_density = false;
   p.wall_friction = 0.4f;
   p.scorr_k = 0.1f;
@@ -42,6 +43,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   EXPECT_FALSE(q.adaptive_time_step);
   EXPECT_FALSE(q.unilateral_constraint);
   EXPECT_TRUE(q.warm_start);
+  EXPECT_FLOAT_EQ(q.chebyshev_rho, 0.9f);
   EXPECT_FALSE(q.wall_density);
   EXPECT_FLOAT_EQ(q.wall_friction, 0.4f);
   EXPECT_FLOAT_EQ(q.scorr_k, 0.1f);

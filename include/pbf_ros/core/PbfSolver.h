@@ -26,6 +26,7 @@ struct Reflection;
 class LatticeBoundary;
 class NeighborGrid;
 class SolidBoundaries;
+class ChebyshevAcceleration;
 
 class PbfSolver {
  public:
@@ -189,6 +190,7 @@ class PbfSolver {
   std::vector<float> reorder_float_scratch_;
 
   std::unique_ptr<NeighborGrid> grid_;
+  std::unique_ptr<ChebyshevAcceleration> chebyshev_;  // of the constraint iterations
   std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h
   Eigen::AlignedBox3f fluid_reach_;  // empty: every obstacle takes part
   bool track_wrenches_ = false;

@@ -50,6 +50,12 @@ struct SolverParams {
   // default: at the shipped tolerance it halves the density error at the same cost instead
   // of saving iterations; it pays at tight tolerances (README "Calibration", warm start).
   bool warm_start = false;
+  // Chebyshev acceleration of the constraint iterations (ChebyshevAcceleration.h): rho is
+  // the assumed spectral radius of the plain Jacobi iteration, in [0, 0.99]; 0: off. Too
+  // low only accelerates less; too high would diverge, so the solve restarts the
+  // acceleration whenever its error grows. 0.9 is safe in the shipped scenes (README
+  // "Calibration", acceleration). Like the warm start, it makes the solve projected.
+  float chebyshev_rho = 0.0f;
   // C = max(rho/rho0 - 1, 0): only compression is corrected, so surface particles with
   // missing neighbours are not pulled together (no clumping). Off: the seed's C = rho/rho0 - 1.
   bool unilateral_constraint = true;
@@ -110,6 +116,12 @@ struct SolverParams {
   float cfmEpsilon() const;
   // XSPH's per-step coefficient c for a step of dt.
   float xsphCoefficient(float dt) const;
+
+  // The solve keeps each particle's summed multiplier <= 0 and may take pushes back
+  // (ConstraintPasses.cpp): needed when pushes can overshoot (warm start, acceleration).
+  bool projectedSolve() const {
+    return unilateral_constraint && (warm_start || chebyshev_rho > 0.0f);
+  }
 
   // Empty when every value is usable; otherwise a message naming the first bad field.
   std::string validate() const;
