@@ -2,12 +2,15 @@
 // pass/fail and writes stress.csv; exits 1 when any case fails.
 //
 //   pbf_stress [--out DIR] [--reduced] [--only SUBSTRING] [--list] [--no-progress]
+//              [--set key=value]...
 //
 // Pass means: no NaN/Inf in any position, velocity or density; no particle outside the
 // container; every step completed; kinetic energy bounded: E_kin <= E_kin,0 + E_pot,0 at
 // every step, or for starts with overlapping particles E_kin <= 1/2 N m cap^2 at every step
 // and <= E_kin,0 + E_pot,0 + N m g H at the end (bench/EnergyBound.h says why).
 // --reduced is the short matrix ctest runs. With --out, stress_energy.csv holds E_kin(t).
+// --set overrides a solver parameter in every case after it is built (e.g. warm_start=true):
+// the same hostile situations for an option that is off by default.
 
 #include <algorithm>
 #include <cstdio>
@@ -18,11 +21,13 @@
 #include "bench/CsvWriter.h"
 #include "bench/Progress.h"
 #include "bench/StressCases.h"
+#include "pbf_ros/core/Scene.h"
 
 namespace {
 
 void usage(std::ostream& out) {
-  out << "usage: pbf_stress [--out DIR] [--reduced] [--only SUBSTRING] [--list] [--no-progress]\n";
+  out << "usage: pbf_stress [--out DIR] [--reduced] [--only SUBSTRING] [--list] [--no-progress]\n"
+         "                  [--set key=value]...\n";
 }
 
 const char* mark(bool ok) { return ok ? "ok" : "FAIL"; }
@@ -30,7 +35,7 @@ const char* mark(bool ok) { return ok ? "ok" : "FAIL"; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string out_dir, only;
+  std::string out_dir, only, overrides;
   bool reduced = false, list = false, progress = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -47,6 +52,15 @@ int main(int argc, char** argv) {
     else if (a == "--only") only = value();
     else if (a == "--list") list = true;
     else if (a == "--no-progress") progress = false;
+    else if (a == "--set") {
+      const std::string kv = value();
+      const std::size_t eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0) {
+        std::cerr << "pbf_stress: --set expects key=value, got '" << kv << "'\n";
+        return 2;
+      }
+      overrides += kv.substr(0, eq) + ": " + kv.substr(eq + 1) + "\n";
+    }
     else if (a == "-h" || a == "--help") {
       usage(std::cout);
       return 0;
@@ -57,7 +71,20 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    const auto cases = pbf_bench::stressCases(reduced);
+    auto cases = pbf_bench::stressCases(reduced);
+    if (!overrides.empty()) {
+      pbf::SolverParams checked;
+      pbf::applySolverYaml(overrides, "--set", checked);  // a bad key fails here, by name
+      std::printf("pbf_stress: solver overrides in every case:\n%s", overrides.c_str());
+      for (auto& c : cases)
+        c.make = [make = c.make, overrides]() {
+          auto solver = make();
+          pbf::SolverParams p = solver->params();
+          pbf::applySolverYaml(overrides, "--set", p);
+          solver->setParams(p);
+          return solver;
+        };
+    }
     if (list) {
       for (const auto& c : cases) std::printf("%-30s %s\n", c.name.c_str(), c.setup.c_str());
       return 0;

@@ -53,8 +53,9 @@ struct SolverParams {
   // Chebyshev acceleration of the constraint iterations (ChebyshevAcceleration.h): rho is
   // the assumed spectral radius of the plain Jacobi iteration, in [0, 0.99]; 0: off. Too
   // low only accelerates less; too high would diverge, so the solve restarts the
-  // acceleration whenever its error grows. 0.9 is safe in the shipped scenes (README
-  // "Calibration", acceleration). Like the warm start, it makes the solve projected.
+  // acceleration whenever its error grows. 0.9 is the recommended value (README
+  // "Calibration", acceleration). Like the warm start, it makes the solve projected. Not
+  // applied while the solver measures the solids' wrenches (floating bodies, force topics).
   float chebyshev_rho = 0.0f;
   // C = max(rho/rho0 - 1, 0): only compression is corrected, so surface particles with
   // missing neighbours are not pulled together (no clumping). Off: the seed's C = rho/rho0 - 1.
