@@ -25,7 +25,7 @@ double msSince(Clock::time_point t0) {
 // The warm start applies half of the previous step's summed multiplier, as IISPH starts
 // from half the previous pressure (Ihmsen et al. 2014). Not all of it: the unrelaxed Jacobi
 // pushes overshoot (neighbours' corrections add up), so their sum exceeds the pressure that
-// holds the fluid; applied in full, a resting tank's level rose by 17 % even with the
+// holds the fluid; applied in full, a resting tank's level rose by 17-19 % even with the
 // projected solve that takes over-pushes back (ConstraintPasses.cpp), because within the
 // tolerance the surplus still becomes velocity (README "Calibration", warm start).
 constexpr float kWarmStartFraction = 0.5f;

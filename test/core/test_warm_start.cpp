@@ -19,7 +19,7 @@ struct TankRun {
   double density_error = 0.0;    // average, after the solve, over the last 0.4 s
 };
 
-// The shipped tank at d = 0.04 m, fixed dt 1/120 s, iterating to 0.1 % average error.
+// The shipped tank at d = 0.04 m, fixed dt 1/120 s, iterating to `tolerance`.
 TankRun settledTank(bool warm_start, float tolerance, float chebyshev_rho = 0.0f) {
   pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
   scene.solver.particle_spacing = 0.04f;

@@ -19,7 +19,7 @@ class SolidBoundaries;
 // (ConstraintPasses.cpp) takes back, which is why the solver projects whenever this is on.
 class ChebyshevAcceleration {
  public:
-  // Start of a solve from positions q0; rho in [0, 1), 0: off.
+  // Start of a solve from positions q0; rho in [0, 0.99] (SolverParams), 0: off.
   void begin(const std::vector<Eigen::Vector3f>& q0, float rho);
   bool isOn() const { return rho_ > 0.0f; }
   // After a Jacobi correction wrote q: extrapolate it in place, kept inside the solids.
@@ -30,7 +30,10 @@ class ChebyshevAcceleration {
   // Particles were re-sorted in the middle of the solve (a neighbour-list rebuild).
   void reorder(const std::vector<std::uint32_t>& order, std::vector<Eigen::Vector3f>& scratch);
   // End of the solve: nothing to follow a later re-sort (capacity kept: no allocation).
-  void end() { previous_.clear(), current_.clear(); }
+  void end() {
+    previous_.clear();
+    current_.clear();
+  }
 
  private:
   // Plain iterations before the first extrapolation: the first corrections remove the
