@@ -142,18 +142,20 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       continue;
     }
     float c = rho * inv_rho0 - 1.0f;
+    // Projected, an expanded particle's negative c may take back its push (below).
+    if (unilateral && !projected) c = std::max(c, 0.0f);
     const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
-    if (projected) {  // the step's summed multiplier stays <= 0: push, or take a push back
-      const float before = lambda_sum_[i];
-      float step = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
-      if (step > 0.0f) step *= kReleaseRelaxation;
-      lambda_[i] = std::min(before + step, 0.0f) - before;
-      // What is left to correct: the compression, or the expansion that a push caused.
-      complementarity_residual_[i] = c > 0.0f ? c : std::min(-c, -before * denom);
+    const float step = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
+    if (!projected) {
+      lambda_[i] = step;
       continue;
     }
-    if (unilateral) c = std::max(c, 0.0f);
-    lambda_[i] = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
+    // The step's summed multiplier stays <= 0: push, or take a push back (relaxed).
+    const float before = lambda_sum_[i];
+    const float relaxed = step > 0.0f ? kReleaseRelaxation * step : step;
+    lambda_[i] = std::min(before + relaxed, 0.0f) - before;
+    // What is left to correct: the compression, or the expansion that a push caused.
+    complementarity_residual_[i] = c > 0.0f ? c : std::min(-c, -before * denom);
   }
   if (projected && pass == LambdaPass::kNewton) {
     avg_error = static_cast<float>(

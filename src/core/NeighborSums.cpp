@@ -72,7 +72,7 @@ VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
     sy += g * dy;
     sz += g * dz;
   }
-  return {sx, sy, sz, 0};
+  return {sx, sy, sz};
 }
 
 DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i) {
@@ -115,7 +115,7 @@ VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t 
     sy += f * (V[3 * j + 1] - uy);
     sz += f * (V[3 * j + 2] - uz);
   }
-  return {sx, sy, sz, 0};
+  return {sx, sy, sz};
 }
 
 // The image sums: the loops above with x_j replaced by its mirror image m x_j + b.
@@ -264,8 +264,7 @@ VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::s
   const float h = k.h, spiky = k.spiky, tiny2 = k.coincident2;
   const float li = lambda[i];
   float sx = 0.0f, sy = 0.0f, sz = 0.0f;
-  int coincident = 0;
-#pragma omp simd reduction(+ : sx, sy, sz, coincident)
+#pragma omp simd reduction(+ : sx, sy, sz)
   for (std::size_t e = begin; e < end; ++e) {
     const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
@@ -274,12 +273,11 @@ VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::s
     const float rlen = std::sqrt(r2);
     const float dl = std::max(h - rlen, 0.0f);
     const float g = r2 > tiny2 ? (li + lambda[j]) * spiky * dl * dl / rlen : 0.0f;
-    coincident += r2 <= tiny2 ? 1 : 0;
     sx += g * dx;
     sy += g * dy;
     sz += g * dz;
   }
-  return {sx, sy, sz, coincident};
+  return {sx, sy, sz};
 }
 
 VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Reflection& r,
@@ -302,7 +300,7 @@ VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Refle
     sy += g * (yi - y) + gi * o.dy(x, y, z);
     sz += g * (zi - z) + gi * o.dz(x, y, z);
   }
-  return {sx, sy, sz, 0};
+  return {sx, sy, sz};
 }
 
 DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i,

@@ -41,10 +41,9 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
 
 // sum_j (lambda_i + lambda_j) g_ij r_ij: particle i's position correction (eq 12, no
 // s_corr), from the lambda pass's pair factors (0 for coincident pairs, which the lambda
-// pass counted: the caller redoes them). `coincident` is left 0.
+// pass counted: the caller redoes them).
 struct VectorSum {
   float x, y, z;
-  int coincident;
 };
 VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
                     const float* pair_gradient);
