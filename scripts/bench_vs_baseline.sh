@@ -53,6 +53,10 @@ while [ $# -gt 0 ]; do
   shift
 done
 
+if [ "$WARM" = 1 ] && [ "$MODE" != dambreak ]; then
+  echo "bench_vs_baseline.sh: --warm-start needs --dambreak-1m3" >&2; exit 2
+fi
+
 # Outside the source tree: a second pbf_ros package below this one would make
 # `roslaunch pbf_ros ...` find two of every launch file.
 BASE_DIR="${PBF_BASELINE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/pbf_ros/baseline}"
@@ -91,7 +95,6 @@ BUILDS="baseline current"
 [ "$NATIVE" = 1 ] && BUILDS="$BUILDS native"
 declare -A EXTRA=([baseline]="" [current]="" [native]="")
 if [ "$WARM" = 1 ]; then
-  [ "$MODE" = dambreak ] || { echo "bench_vs_baseline.sh: --warm-start needs --dambreak-1m3" >&2; exit 2; }
   BIN[warm]="${BIN[current]}"
   BIN[warm_cheb]="${BIN[current]}"
   EXTRA[warm]="--set warm_start=true"
