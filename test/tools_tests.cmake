@@ -9,3 +9,9 @@ endif()
 if(TEST _ctest_pbf_ros_gtest_test_stress_reduced)
   set_tests_properties(_ctest_pbf_ros_gtest_test_stress_reduced PROPERTIES ENVIRONMENT "OMP_WAIT_POLICY=passive")
 endif()
+
+# The dam-break study's resolutions hold the same water (no lattice gaps).
+catkin_add_gtest(test_dam_break_study test/tools/test_dam_break_study.cpp)
+if(TARGET test_dam_break_study)
+  target_link_libraries(test_dam_break_study pbf_bench_support pbf_core gtest_main)
+endif()

@@ -9,32 +9,21 @@
 
 namespace pbf_bench {
 
-namespace {
-
-struct Resolution {
-  std::string label;
-  float spacing;
-  float depth;          // tank depth across y [m]; 0 = the scene's own (0.5 m)
-  bool settled = true;  // start from the settled column (false: the scene's lattice)
-};
-
 // The resolution study uses a 0.2 m deep slab of the tank: the flow is uniform across y
-// between free-slip walls, and the slab lets 0.0126 m (a/d = 32) run in minutes on two
-// cores. The shipped scene itself (full depth, default spacing) is run too: the target is
-// about what users get.
-std::vector<Resolution> resolutions(bool quick) {
+// between free-slip walls, and the slab lets a/d = 32 run in minutes on two cores. The
+// shipped scene itself (full depth, default spacing) is run too: the target is about what
+// users get.
+std::vector<DamBreakResolution> damBreakResolutions(bool quick) {
   if (quick)
     return {{"coarse d=0.04", 0.04f, 0.2f},
             {"default scene, settled start", 0.02f, 0.0f},
             {"default scene, lattice start", 0.02f, 0.0f, false}};
   return {{"coarse d=0.04", 0.04f, 0.2f},
           {"medium d=0.02", 0.02f, 0.2f},
-          {"fine d=0.0126", 0.0126f, 0.2f},
+          {"fine d=0.0125", 0.0125f, 0.2f},
           {"default scene, settled start", 0.02f, 0.0f},
           {"default scene, lattice start", 0.02f, 0.0f, false}};
 }
-
-}  // namespace
 
 void runDamBreakStudy(const BenchOptions& o) {
   std::printf("\n== dam break vs Martin & Moyce (1952), n^2 = 2 ==\n");
@@ -47,7 +36,7 @@ void runDamBreakStudy(const BenchOptions& o) {
                      "rms_no_shift_full_row"});
   std::printf("%-30s %9s %8s %13s %7s %12s %9s\n", "run", "particles", "a/d", "RMS(no shift)",
               "shift", "RMS(shift)", "wall/sim");
-  for (const Resolution& res : resolutions(o.quick)) {
+  for (const DamBreakResolution& res : damBreakResolutions(o.quick)) {
     pbf::Scene scene = damBreakScene(o.scenes_dir, res.spacing, res.depth);
     if (!o.solver_overrides.empty()) pbf::applySolverYaml(o.solver_overrides, "--set", scene.solver);
     Progress progress("dam break " + res.label, o.progress);
