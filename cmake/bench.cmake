@@ -12,6 +12,7 @@ add_library(pbf_bench_support STATIC
   src/tools/bench/SettingsSweep.cpp
   src/tools/bench/ScalingStudy.cpp
   src/tools/bench/WarmStartStudy.cpp
+  src/tools/bench/TankStudy.cpp
   src/tools/bench/StressCases.cpp
   src/tools/bench/EnergyBound.cpp)
 target_include_directories(pbf_bench_support PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/tools)

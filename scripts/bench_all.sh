@@ -47,7 +47,7 @@ if [ "$PUBLISH" = 1 ]; then
   DOC="$ROOT/doc/validation"
   mkdir -p "$DOC"
   cp "$OUT"/*.png "$DOC/"
-  for f in dambreak_summary sweep scaling stress; do
+  for f in dambreak_summary sweep scaling stress tank; do
     [ -f "$OUT/$f.csv" ] && cp "$OUT/$f.csv" "$DOC/"
   done
   echo "[bench] published figures and tables to $DOC"

@@ -15,3 +15,9 @@ catkin_add_gtest(test_dam_break_study test/tools/test_dam_break_study.cpp)
 if(TARGET test_dam_break_study)
   target_link_libraries(test_dam_break_study pbf_bench_support pbf_core gtest_main)
 endif()
+
+# The tank study's measures of the layers along the walls, on a lattice where they are known.
+catkin_add_gtest(test_tank_measures test/tools/test_tank_measures.cpp)
+if(TARGET test_tank_measures)
+  target_link_libraries(test_tank_measures pbf_bench_support pbf_core gtest_main)
+endif()

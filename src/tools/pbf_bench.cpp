@@ -1,6 +1,6 @@
 // pbf_bench: the proof that the solver is accurate and fast (issue 5). No ROS.
 //
-//   pbf_bench [--out DIR] [--only dambreak,sweep,scaling,warmstart] [--quick] [--threads N]
+//   pbf_bench [--out DIR] [--only dambreak,sweep,scaling,warmstart,tank] [--quick] [--threads N]
 //             [--reference CSV] [--scenes-dir DIR] [--no-progress] [--set key=value]...
 //
 // Studies (each writes CSV files into DIR; scripts/plot_bench.py turns them into PNGs):
@@ -12,8 +12,10 @@
 //   scaling   ms per step against particles (10k..320k) and threads -> scaling.csv
 //   warmstart iterations to 0.1 % / 0.01 % density error with and without the warm start,
 //             at dt 1/240, 1/120, 1/60 s, hydrostatic tank and dam break -> warm_start.csv
+//   tank      the hydrostatic tank's start-up speed, level and density error at d = 0.02 and
+//             0.0125 m, each also with dt halved                          -> tank.csv
 // --quick runs smaller, shorter versions of each (for checking the pipeline, not figures).
-// --set overrides a solver parameter in the dam-break study (e.g. proposed defaults).
+// --set overrides a solver parameter in the dam-break and tank studies (e.g. proposed defaults).
 
 #include <omp.h>
 
@@ -30,14 +32,15 @@
 #include "bench/DamBreakStudy.h"
 #include "bench/ScalingStudy.h"
 #include "bench/SettingsSweep.h"
+#include "bench/TankStudy.h"
 #include "bench/WarmStartStudy.h"
 
 namespace {
 
-const std::set<std::string> kStudies = {"dambreak", "sweep", "scaling", "warmstart"};
+const std::set<std::string> kStudies = {"dambreak", "sweep", "scaling", "warmstart", "tank"};
 
 void usage(std::ostream& out) {
-  out << "usage: pbf_bench [--out DIR] [--only dambreak,sweep,scaling,warmstart] [--quick]\n"
+  out << "usage: pbf_bench [--out DIR] [--only dambreak,sweep,scaling,warmstart,tank] [--quick]\n"
          "                 [--threads N] [--reference CSV] [--scenes-dir DIR] [--no-progress] [--set key=value]...\n";
 }
 
@@ -89,7 +92,7 @@ int main(int argc, char** argv) {
         std::stringstream list(value());
         for (std::string s; std::getline(list, s, ',');) {
           if (!kStudies.count(s))
-            throw std::invalid_argument("--only: unknown study '" + s + "' (known: dambreak, sweep, scaling, warmstart)");
+            throw std::invalid_argument("--only: unknown study '" + s + "' (known: dambreak, sweep, scaling, warmstart, tank)");
           only.insert(s);
         }
       } else if (a == "-h" || a == "--help") {
@@ -115,6 +118,7 @@ int main(int argc, char** argv) {
     if (only.count("sweep")) pbf_bench::runSettingsSweep(o);
     if (only.count("scaling")) pbf_bench::runScalingStudy(o);
     if (only.count("warmstart")) pbf_bench::runWarmStartStudy(o);
+    if (only.count("tank")) pbf_bench::runTankStudy(o);
   } catch (const std::exception& e) {
     std::cerr << "\npbf_bench: " << e.what() << "\n";
     return 1;

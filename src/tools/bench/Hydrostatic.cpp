@@ -7,6 +7,49 @@
 
 namespace pbf_bench {
 
+namespace {
+
+// The first layer's density by how many walls it touches, and how close it stays to each
+// wall (HydrostaticResult). The top of the container is left out: the water never reaches it.
+void measureWallLayers(const pbf::PbfSolver& solver, const pbf::Scene& scene, double surface,
+                       HydrostaticResult& r) {
+  const float d = scene.solver.particle_spacing;
+  // Within h of the free surface a particle's sum is truncated by the air, not the wall.
+  const double below = surface - scene.solver.supportRadius();
+  const Eigen::AlignedBox3f& box = scene.container;
+  const auto& x = solver.positions();
+  const auto& rho = solver.densities();
+  double sum[4] = {0, 0, 0, 0};
+  long long count[4] = {0, 0, 0, 0};
+  constexpr int kWalls = 5;  // x-, x+, y-, y+, floor
+  double gap_sum[kWalls] = {0, 0, 0, 0, 0};
+  long long gap_n[kWalls] = {0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const float dist[kWalls] = {x[i].x() - box.min().x(), box.max().x() - x[i].x(), x[i].y() - box.min().y(),
+                                box.max().y() - x[i].y(), x[i].z() - box.min().z()};
+    int touching = 0;
+    for (int w = 0; w < kWalls; ++w) {
+      if (dist[w] >= d) continue;
+      ++touching;
+      gap_sum[w] += dist[w] / d;
+      ++gap_n[w];
+    }
+    if (x[i].z() > below) continue;
+    sum[std::min(touching, 3)] += rho[i] / scene.solver.rest_density;
+    ++count[std::min(touching, 3)];
+  }
+  auto mean = [&](int k) { return count[k] ? sum[k] / count[k] : NAN; };
+  r.interior_density = mean(0);
+  r.face_density = mean(1);
+  r.edge_density = mean(2);
+  r.corner_density = mean(3);
+  r.wall_gap = 0.0;
+  for (int w = 0; w < kWalls; ++w)
+    r.wall_gap = std::max(r.wall_gap, gap_n[w] ? gap_sum[w] / gap_n[w] : INFINITY);
+}
+
+}  // namespace
+
 HydrostaticResult runHydrostatic(const pbf::Scene& scene, double settle_seconds, Progress* progress) {
   HydrostaticResult r;
   auto solver = makeSolver(scene);
@@ -20,6 +63,9 @@ HydrostaticResult runHydrostatic(const pbf::Scene& scene, double settle_seconds,
   long long err_n = 0;
   r.totals = runUntil(*solver, settle_seconds,
                       [&](const pbf::PbfSolver& s, const pbf::StepStats& st) {
+                        if (s.time() <= kStartupSeconds + 1e-9)
+                          for (const auto& v : s.velocities())
+                            r.startup_speed_max = std::max(r.startup_speed_max, double(v.norm()));
                         if (s.time() < window_start) return;
                         err_sum += st.avg_density_error;
                         ++err_n;
@@ -27,7 +73,9 @@ HydrostaticResult runHydrostatic(const pbf::Scene& scene, double settle_seconds,
                       },
                       progress);
   r.avg_density_error = err_n ? err_sum / err_n : NAN;
-  r.height_loss = (h_volume - pbf::freeSurfaceHeight(solver->positions(), d, scene.container)) / h_volume;
+  const double surface = pbf::freeSurfaceHeight(solver->positions(), d, scene.container);
+  r.height_loss = (h_volume - surface) / h_volume;
+  measureWallLayers(*solver, scene, surface, r);
   double v2 = 0.0, vmax2 = 0.0;
   for (const auto& v : solver->velocities()) {
     v2 += v.squaredNorm();

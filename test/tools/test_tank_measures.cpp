@@ -1,0 +1,43 @@
+// The tank study's wall measures (pbf_bench --only tank), checked where the answer is known:
+// a fresh lattice, one small step in, sits at rest density next to a face, an edge and a
+// corner (the calibration), and its first layer half a spacing from every wall.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bench/BenchScenes.h"
+#include "bench/Hydrostatic.h"
+
+namespace {
+
+TEST(TankMeasures, AFreshLatticeSitsAtRestDensityAgainstEveryWall) {
+  // 0.05 m tiles the tank's water (0.4 x 0.4 x 0.3 m) exactly: 8 x 8 x 6 particles.
+  pbf::Scene scene = pbf_bench::hydrostaticScene(pbf_bench::defaultScenesDir(), 0.05f);
+  scene.solver.adaptive_time_step = false;
+  scene.solver.time_step = 1.0e-4f;  // one step: gravity moves the lattice by 5e-8 m
+  const pbf_bench::HydrostaticResult r = pbf_bench::runHydrostatic(scene, 1.0e-4, nullptr);
+  EXPECT_EQ(r.totals.steps, 1);
+  EXPECT_NEAR(r.interior_density, 1.0, 1e-3);
+  EXPECT_NEAR(r.face_density, 1.0, 1e-3);
+  EXPECT_NEAR(r.edge_density, 1.0, 1e-3);
+  EXPECT_NEAR(r.corner_density, 1.0, 1e-3);
+  EXPECT_NEAR(r.wall_gap, 0.5, 1e-3);
+  EXPECT_LT(r.startup_speed_max, 2.0 * 9.81 * 1.0e-4);  // about g dt: gravity alone
+  EXPECT_NEAR(r.height_loss, 0.0, 1e-3);
+}
+
+TEST(TankMeasures, ALayerThatLeavesAWallIsSeen) {
+  // The same lattice shifted 1.2 spacings off the floor: no particle within a spacing of it.
+  pbf::Scene scene = pbf_bench::hydrostaticScene(pbf_bench::defaultScenesDir(), 0.05f);
+  for (auto& block : scene.fluid) {
+    block.min.z() += 0.06f;
+    block.max.z() += 0.06f;
+  }
+  scene.solver.adaptive_time_step = false;
+  scene.solver.time_step = 1.0e-4f;
+  const pbf_bench::HydrostaticResult r = pbf_bench::runHydrostatic(scene, 1.0e-4, nullptr);
+  EXPECT_TRUE(std::isinf(r.wall_gap)) << r.wall_gap;
+}
+
+}  // namespace
