@@ -12,8 +12,8 @@
 //   scaling   ms per step against particles (10k..320k) and threads -> scaling.csv
 //   warmstart iterations to 0.1 % / 0.01 % density error with and without the warm start,
 //             at dt 1/240, 1/120, 1/60 s, hydrostatic tank and dam break -> warm_start.csv
-//   tank      the hydrostatic tank's start-up speed, level and density error at d = 0.02 and
-//             0.0125 m, each also with dt halved                          -> tank.csv
+//   tank      the hydrostatic tank's start-up speed, level, density error and first layers
+//             along the walls at d = 0.02 and 0.0125 m, each also with dt halved -> tank.csv
 // --quick runs smaller, shorter versions of each (for checking the pipeline, not figures).
 // --set overrides a solver parameter in the dam-break and tank studies (e.g. proposed defaults).
 

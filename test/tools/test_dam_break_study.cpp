@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <vector>
 
 #include "bench/BenchScenes.h"
@@ -26,7 +25,7 @@ TEST(DamBreakStudy, EveryResolutionHoldsTheWholeColumn) {
       // The water the column holds, in lattice cells, against the particles placed.
       const double cells = double(column.x()) * column.y() * column.z() / (d * d * d);
       EXPECT_NEAR(double(x.size()), cells, 1e-3 * cells);
-      // And it reaches the back wall and the floor: nothing to spread into.
+      // And it fills the column to every side: no gap to spread into.
       Eigen::Vector3f lo = x.front(), hi = x.front();
       for (const auto& p : x) {
         lo = lo.cwiseMin(p);

@@ -16,12 +16,11 @@ struct HydrostaticResult {
   double residual_speed_max = 0.0; // [m/s] at the end
   double residual_speed_rms = 0.0; // [m/s] at the end
   double startup_speed_max = 0.0;  // [m/s] largest particle speed over the first kStartupSeconds
-  // At the end, the mean density (/ rho0) of the particles whose centres lie within one
-  // spacing of exactly one wall (floor or side: the first layer on a face), of two (an
-  // edge) and of three (a corner), deeper than h below the free surface; the container's
-  // top is never wetted here.
-  // interior: the particles within a spacing of no wall, for comparison (the shipped
-  // tolerance lets the whole column sit ~0.3 % compressed).
+  // At the end, the mean density (/ rho0) of the particles deeper than h below the free
+  // surface whose centres lie within one spacing of exactly one wall (floor or side: the
+  // first layer on a face), of two (an edge), of three (a corner), and of none (inside, for
+  // comparison: the shipped tolerance lets the whole column sit ~0.3 % compressed). The
+  // container's top is never wetted here.
   double interior_density = 0.0, face_density = 0.0, edge_density = 0.0, corner_density = 0.0;
   // At the end, per wetted wall the mean distance from it of the particles within one
   // spacing, the largest over the walls [spacings]: ~0.5 while the first layer touches the
