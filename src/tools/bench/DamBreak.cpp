@@ -68,6 +68,8 @@ DamBreakResult runDamBreak(const pbf::Scene& scene, const FrontCurve& reference,
   r.rms_shifted = frontRms(r.curve, reference, r.shift, kFrontRmsTMax);
   r.rms_no_shift_quarter_row = frontRms(quarter_row, reference, 0.0, kFrontRmsTMax);
   r.rms_no_shift_full_row = frontRms(full_row, reference, 0.0, kFrontRmsTMax);
+  r.shift_quarter_row = bestShift(quarter_row, reference, kFrontRmsTMax, kMaxGateShift);
+  r.shift_full_row = bestShift(full_row, reference, kFrontRmsTMax, kMaxGateShift);
   return r;
 }
 

@@ -28,9 +28,10 @@ struct DamBreakResult {
   double rms_no_shift = 0.0;     // [a], T <= kFrontRmsTMax
   double shift = 0.0;            // best gate-release shift in [0, kMaxGateShift]
   double rms_shifted = 0.0;      // [a] at that shift
-  // Sensitivity of the front definition: the unshifted RMS when a slab needs a quarter of a
-  // particle row, or a full row, instead of half a row to count as fluid.
+  // Sensitivity of the front definition: the unshifted RMS and the fitted shift when a slab
+  // needs a quarter of a particle row, or a full row, instead of half a row to count as fluid.
   double rms_no_shift_quarter_row = 0.0, rms_no_shift_full_row = 0.0;
+  double shift_quarter_row = 0.0, shift_full_row = 0.0;
   std::vector<std::vector<double>> profiles;  // h(x)/a at profileTimes(), bins of a/10
   RunTotals totals;
 };
