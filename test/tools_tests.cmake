@@ -21,3 +21,13 @@ catkin_add_gtest(test_tank_measures test/tools/test_tank_measures.cpp)
 if(TARGET test_tank_measures)
   target_link_libraries(test_tank_measures pbf_bench_support pbf_core gtest_main)
 endif()
+
+# The accelerated solve (chebyshev_rho 0.95, warm start, doubled step) through the stress
+# cases it once failed (~2 s).
+catkin_add_gtest(test_stress_accelerated test/tools/test_stress_accelerated.cpp)
+if(TARGET test_stress_accelerated)
+  target_link_libraries(test_stress_accelerated pbf_bench_support pbf_core gtest_main)
+endif()
+if(TEST _ctest_pbf_ros_gtest_test_stress_accelerated)
+  set_tests_properties(_ctest_pbf_ros_gtest_test_stress_accelerated PROPERTIES ENVIRONMENT "OMP_WAIT_POLICY=passive")
+endif()

@@ -1,5 +1,8 @@
 #include "pbf_ros/core/ChebyshevAcceleration.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "pbf_ros/core/Boundaries.h"
 
 namespace pbf {
@@ -7,6 +10,7 @@ namespace pbf {
 void ChebyshevAcceleration::begin(const std::vector<Eigen::Vector3f>& q0, float rho) {
   rho_ = rho;
   omega_ = 1.0f;
+  omega_limit_ = 2.0f / (1.0f + std::sqrt(1.0f - rho * rho));
   since_start_ = 0;
   previous_.clear();
   if (isOn()) current_ = q0;
@@ -22,6 +26,7 @@ void ChebyshevAcceleration::extrapolate(std::vector<Eigen::Vector3f>& q,
     omega_ = 2.0f / (2.0f - rho2);
   else
     omega_ = 4.0f / (4.0f - rho2 * omega_);
+  omega_ = std::min(omega_, omega_limit_);
   ++since_start_;
   const std::size_t n = q.size();
   if (omega_ != 1.0f && previous_.size() == n) {

@@ -73,17 +73,8 @@ int main(int argc, char** argv) {
   try {
     auto cases = pbf_bench::stressCases(reduced);
     if (!overrides.empty()) {
-      pbf::SolverParams checked;
-      pbf::applySolverYaml(overrides, "--set", checked);  // a bad key fails here, by name
+      pbf_bench::applySolverOverrides(cases, overrides);  // a bad key fails here, by name
       std::printf("pbf_stress: solver overrides in every case:\n%s", overrides.c_str());
-      for (auto& c : cases)
-        c.make = [make = c.make, overrides]() {
-          auto solver = make();
-          pbf::SolverParams p = solver->params();
-          pbf::applySolverYaml(overrides, "--set", p);
-          solver->setParams(p);
-          return solver;
-        };
     }
     if (list) {
       for (const auto& c : cases) std::printf("%-30s %s\n", c.name.c_str(), c.setup.c_str());

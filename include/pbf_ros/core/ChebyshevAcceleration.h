@@ -17,6 +17,12 @@ class SolidBoundaries;
 // per iteration (a column's pressure takes many); the extrapolation carries it further.
 // Positions only: an extrapolated over-push becomes an expansion that the projected solve
 // (ConstraintPasses.cpp) takes back, which is why the solver projects whenever this is on.
+// omega never exceeds its limit 2 / (1 + sqrt(1 - rho^2)): the recurrence starts above it
+// (2 / (2 - rho^2): 1.82 for rho = 0.95, against a limit of 1.52), and every restart, i.e.
+// right after the iteration misbehaved, would re-enter that phase. Uncapped, rho = 0.95
+// gained energy at large steps and kept an overlapping start's energy (pbf_stress: fixed
+// 1/60, 1/30, 1/15 s, overlapping starts); capped, the same cases pass and the 1 m^3 dam
+// break converges as fast (README, Calibration).
 class ChebyshevAcceleration {
  public:
   // Start of a solve from positions q0; rho in [0, 0.99] (SolverParams), 0: off.
@@ -41,6 +47,7 @@ class ChebyshevAcceleration {
   static constexpr int kPlainIterations = 2;
   float rho_ = 0.0f;
   float omega_ = 1.0f;
+  float omega_limit_ = 1.0f;  // 2 / (1 + sqrt(1 - rho^2))
   int since_start_ = 0;
   std::vector<Eigen::Vector3f> previous_;  // q^{k-1}
   std::vector<Eigen::Vector3f> current_;   // q^k

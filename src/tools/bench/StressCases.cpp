@@ -10,6 +10,7 @@
 #include "bench/SceneRun.h"
 #include "pbf_ros/core/Metrics.h"
 #include "pbf_ros/core/RigidBody.h"
+#include "pbf_ros/core/Scene.h"
 
 namespace pbf_bench {
 
@@ -174,6 +175,19 @@ std::vector<StressCase> stressCases(bool reduced) {
   add("sloshing soak " + std::to_string(soak) + " steps", "sloshing tank d=0.04 (500 particles), defaults",
       [] { return makeSolver(sloshingScene(0.04f)); }, soak, 0.0);
   return c;
+}
+
+void applySolverOverrides(std::vector<StressCase>& cases, const std::string& yaml) {
+  pbf::SolverParams checked;
+  pbf::applySolverYaml(yaml, "--set", checked);  // a bad key fails here, before any case runs
+  for (auto& c : cases)
+    c.make = [make = c.make, yaml]() {
+      auto solver = make();
+      pbf::SolverParams p = solver->params();
+      pbf::applySolverYaml(yaml, "--set", p);
+      solver->setParams(p);
+      return solver;
+    };
 }
 
 StressResult runStressCase(const StressCase& c, Progress* progress) {

@@ -59,4 +59,9 @@ std::vector<StressCase> stressCases(bool reduced);
 
 StressResult runStressCase(const StressCase& c, Progress* progress);
 
+// Every case's solver gets these solver settings (YAML, e.g. "warm_start: true\n") on top
+// of its own after it is built: options that are off by default go through the matrix too.
+// A bad key throws (pbf::SceneError), naming it.
+void applySolverOverrides(std::vector<StressCase>& cases, const std::string& yaml);
+
 }  // namespace pbf_bench
