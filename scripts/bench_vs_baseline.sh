@@ -48,6 +48,12 @@ SECONDS_SIM=1
 TOLERANCES="0.0005 0.0001"
 while [ $# -gt 0 ]; do
   case "$1" in
+    --rounds|--fast|--filter|--baseline|--seconds|--tolerances)
+      if [ $# -lt 2 ] || [ -z "$2" ]; then
+        echo "bench_vs_baseline.sh: $1 needs a value (see --help)" >&2; exit 2
+      fi ;;
+  esac
+  case "$1" in
     --rounds) ROUNDS="$2"; shift ;;
     --native) NATIVE=1 ;;
     --warm-start) WARM=1 ;;
