@@ -24,7 +24,10 @@ TEST(TankMeasures, AFreshLatticeSitsAtRestDensityAgainstEveryWall) {
   EXPECT_NEAR(r.corner_density, 1.0, 1e-3);
   EXPECT_NEAR(r.wall_gap, 0.5, 1e-3);
   EXPECT_LT(r.startup_speed_max, 2.0 * 9.81 * 1.0e-4);  // about g dt: gravity alone
+  EXPECT_EQ(r.first_steps_speed_max, r.startup_speed_max);  // one step is all of both windows
   EXPECT_NEAR(r.height_loss, 0.0, 1e-3);
+  // 4 x 4 columns of 2 layers between lattice planes: exactly one particle per d^3.
+  EXPECT_NEAR(r.bulk_number_density, 1.0, 1e-9);
 }
 
 TEST(TankMeasures, ALayerThatLeavesAWallIsSeen) {
@@ -38,6 +41,16 @@ TEST(TankMeasures, ALayerThatLeavesAWallIsSeen) {
   scene.solver.time_step = 1.0e-4f;
   const pbf_bench::HydrostaticResult r = pbf_bench::runHydrostatic(scene, 1.0e-4, nullptr);
   EXPECT_TRUE(std::isinf(r.wall_gap)) << r.wall_gap;
+}
+
+TEST(TankMeasures, TheBulkCountIsPerVolumeOfTheRegion) {
+  // Water over half the bulk region's width (x < 0.2 m of its 0.1-0.3 m): half the count.
+  pbf::Scene scene = pbf_bench::hydrostaticScene(pbf_bench::defaultScenesDir(), 0.05f);
+  for (auto& block : scene.fluid) block.max.x() = 0.2f;
+  scene.solver.adaptive_time_step = false;
+  scene.solver.time_step = 1.0e-4f;
+  const pbf_bench::HydrostaticResult r = pbf_bench::runHydrostatic(scene, 1.0e-4, nullptr);
+  EXPECT_NEAR(r.bulk_number_density, 0.5, 1e-9);
 }
 
 }  // namespace

@@ -48,6 +48,23 @@ void measureWallLayers(const pbf::PbfSolver& solver, const pbf::Scene& scene, do
     r.wall_gap = std::max(r.wall_gap, gap_n[w] ? gap_sum[w] / gap_n[w] : INFINITY);
 }
 
+// HydrostaticResult::bulk_number_density. The region's faces lie on whole spacings from the
+// container's floor and side walls, where the tank's water starts, so they fall between the
+// lattice's planes and the start lattice counts exactly one particle per d^3.
+double bulkNumberDensity(const pbf::PbfSolver& solver, const pbf::Scene& scene, double surface) {
+  const double d = scene.solver.particle_spacing;
+  const Eigen::Vector3d lo = scene.container.min().cast<double>() + Eigen::Vector3d::Constant(2.0 * d);
+  Eigen::Vector3d hi = scene.container.max().cast<double>() - Eigen::Vector3d::Constant(2.0 * d);
+  hi.z() = scene.container.min().z() + std::floor((surface - scene.solver.supportRadius()) / d) * d;
+  if (!(hi.array() > lo.array()).all()) return NAN;
+  std::size_t inside = 0;
+  for (const auto& x : solver.positions()) {
+    const Eigen::Vector3d p = x.cast<double>();
+    if ((p.array() > lo.array()).all() && (p.array() < hi.array()).all()) ++inside;
+  }
+  return inside * d * d * d / (hi - lo).prod();
+}
+
 }  // namespace
 
 HydrostaticResult runHydrostatic(const pbf::Scene& scene, double settle_seconds, Progress* progress) {
@@ -66,6 +83,8 @@ HydrostaticResult runHydrostatic(const pbf::Scene& scene, double settle_seconds,
                         if (s.time() <= kStartupSeconds + 1e-9)
                           for (const auto& v : s.velocities())
                             r.startup_speed_max = std::max(r.startup_speed_max, double(v.norm()));
+                        if (s.time() <= kFirstStepsSeconds + 1e-9)
+                          r.first_steps_speed_max = r.startup_speed_max;
                         if (s.time() < window_start) return;
                         err_sum += st.avg_density_error;
                         ++err_n;
@@ -76,6 +95,7 @@ HydrostaticResult runHydrostatic(const pbf::Scene& scene, double settle_seconds,
   const double surface = pbf::freeSurfaceHeight(solver->positions(), d, scene.container);
   r.height_loss = (h_volume - surface) / h_volume;
   measureWallLayers(*solver, scene, surface, r);
+  r.bulk_number_density = bulkNumberDensity(*solver, scene, surface);
   double v2 = 0.0, vmax2 = 0.0;
   for (const auto& v : solver->velocities()) {
     v2 += v.squaredNorm();

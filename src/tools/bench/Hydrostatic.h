@@ -16,6 +16,13 @@ struct HydrostaticResult {
   double residual_speed_max = 0.0; // [m/s] at the end
   double residual_speed_rms = 0.0; // [m/s] at the end
   double startup_speed_max = 0.0;  // [m/s] largest particle speed over the first kStartupSeconds
+  // [m/s] The same over the first kFirstStepsSeconds only: a column whose solve stops at the
+  // average tolerance falls as a block until the floor's compression reaches that average.
+  double first_steps_speed_max = 0.0;
+  // At the end, particles per d^3 in the bulk: at least 2 spacings from the side walls and the
+  // floor, more than h below the free surface, between lattice half-planes (exactly 1 for the
+  // start lattice). Beside height_loss it says whether the bulk or the surface lost the level.
+  double bulk_number_density = 0.0;
   // At the end, the mean density (/ rho0) of the particles deeper than h below the free
   // surface whose centres lie within one spacing of exactly one wall (floor or side: the
   // first layer on a face), of two (an edge), of three (a corner), and of none (inside, for
@@ -32,6 +39,7 @@ struct HydrostaticResult {
 
 // Issue 9's start-up window: a fresh tank's lattice should stay below 0.05 m/s throughout.
 constexpr double kStartupSeconds = 0.5;
+constexpr double kFirstStepsSeconds = 0.05;
 
 HydrostaticResult runHydrostatic(const pbf::Scene& scene, double settle_seconds, Progress* progress);
 
