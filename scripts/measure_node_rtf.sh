@@ -1,13 +1,20 @@
 #!/bin/bash
 # The node's real-time factor on the default scene as fast as it can run
-# (real_time_factor:=0), in three set-ups, one after the other (README "Performance"):
-#   headless   nothing subscribed but ~stats
-#   cloud      ~particles subscribed (rostopic hz: receives every message, does not parse it)
-#   surface    ~particles and the rendered colour image subscribed
-# Each: launch, wait WARMUP s, then measure_rtf.py over SECONDS s, then shut down.
+# (real_time_factor:=0), in up to five set-ups, one after the other (README "Performance"):
+#   headless      nothing subscribed but ~stats
+#   cloud         ~particles subscribed (rostopic hz: receives every message, does not parse it)
+#   surface       ~particles and the rendered colour image subscribed
+#   rviz          rviz showing the fluid as a user opens it: `fluid.launch rviz:=true`
+#   rviz_surface  the same with the rendered surface shown too (`rviz:=true surface:=true`)
+# The rviz set-ups (not run by default) draw on $DISPLAY, or on an Xvfb of their own when
+# DISPLAY is unset (rviz renders in software there, as on a machine without a GPU).
+# Each: launch, wait WARMUP s, then measure_rtf.py over SECONDS s, then shut down. With
+# --sim-window "A B": no warm-up; measure_rtf.py over the simulated interval [A, B] s,
+# waiting at most SECONDS s for it (builds of unequal speed compared over the same flow).
 #
 #   scripts/measure_node_rtf.sh [--warmup S] [--seconds S] [--only "headless cloud surface"]
 #                               [--node-bin BIN --params YAML] [--image-topic T]
+#                               [--rviz-config RVIZ] [--sim-window "A B"]
 #
 # --node-bin runs another build's pbf_node binary instead of this package's (e.g. the
 # baseline's, built by scripts/bench_vs_baseline.sh's recipe with
@@ -15,7 +22,9 @@
 # YAML (that build's config/fluid_defaults.yaml) and OMP_WAIT_POLICY=passive, as the
 # baseline's fluid.launch ran it; its ~stats are read with that build's message definition. --image-topic:
 # the colour image to subscribe (default /fluid/rgb/image_rect_color; the baseline e7d8d7f
-# called it /fluid/surface/image_raw).
+# called it /fluid/surface/image_raw). --rviz-config (with --node-bin, for the rviz set-ups):
+# that build's rviz configuration, opened with plain rviz as its fluid.launch did (the
+# baseline's config/pbf.rviz shows the surface image in both rviz set-ups).
 # Needs the workspace built (scripts/build.sh) and no other ROS master on the default port.
 set -euo pipefail
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
@@ -26,6 +35,8 @@ ONLY="headless cloud surface"
 NODE_BIN=""
 PARAMS=""
 IMAGE_TOPIC=/fluid/rgb/image_rect_color
+RVIZ_CONFIG=""
+SIM_WINDOW=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --warmup) WARMUP="$2"; shift ;;
@@ -34,10 +45,22 @@ while [ $# -gt 0 ]; do
     --node-bin) NODE_BIN="$2"; shift ;;
     --params) PARAMS="$2"; shift ;;
     --image-topic) IMAGE_TOPIC="$2"; shift ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    --rviz-config) RVIZ_CONFIG="$2"; shift ;;
+    --sim-window) SIM_WINDOW="$2"; shift ;;
+    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
     *) echo "measure_node_rtf.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
+done
+for setup in $ONLY; do
+  case "$setup" in
+    headless|cloud|surface) ;;
+    rviz|rviz_surface)
+      if [ -n "$NODE_BIN" ] && [ -z "$RVIZ_CONFIG" ]; then
+        echo "measure_node_rtf.sh: the $setup set-up with --node-bin needs --rviz-config" >&2; exit 2
+      fi ;;
+    *) echo "measure_node_rtf.sh: unknown set-up '$setup' (headless cloud surface rviz rviz_surface)" >&2; exit 2 ;;
+  esac
 done
 # The workspace's setup script reads unset variables (ROS_DISTRO): source it without -u.
 set +u
@@ -47,17 +70,34 @@ set -u
 LOG="$ROOT/build/measure_node_rtf"
 mkdir -p "$LOG"
 
+status=0  # 1 once a measurement failed (the others still run)
 PIDS=()
 stop_all() {
   for p in "${PIDS[@]}"; do kill -INT "$p" 2> /dev/null || true; done
   for p in "${PIDS[@]}"; do wait "$p" 2> /dev/null || true; done
   PIDS=()
 }
-trap stop_all EXIT
+
+# rviz needs an X display: an Xvfb of our own when there is none (kept to the end).
+XVFB_PID=""
+ensure_display() {
+  [ -n "${DISPLAY:-}" ] && return
+  export DISPLAY=:97
+  Xvfb "$DISPLAY" -screen 0 1280x1024x24 > "$LOG/xvfb.log" 2>&1 &
+  XVFB_PID=$!
+  sleep 2
+}
+trap 'stop_all; [ -z "$XVFB_PID" ] || kill "$XVFB_PID" 2> /dev/null || true' EXIT
 
 start_node() {  # $1: set-up name (for the log)
+  local launch_args=()
+  case "$1" in
+    rviz) ensure_display; launch_args=(rviz:=true) ;;
+    rviz_surface) ensure_display; launch_args=(rviz:=true surface:=true) ;;
+  esac
   if [ -z "$NODE_BIN" ]; then
-    roslaunch pbf_ros fluid.launch real_time_factor:=0 output:=log > "$LOG/$1.launch.log" 2>&1 &
+    roslaunch pbf_ros fluid.launch real_time_factor:=0 output:=log "${launch_args[@]}" \
+      > "$LOG/$1.launch.log" 2>&1 &
     PIDS+=($!)
     return
   fi
@@ -73,6 +113,10 @@ start_node() {  # $1: set-up name (for the log)
   LD_LIBRARY_PATH="$libs:${LD_LIBRARY_PATH:-}" OMP_WAIT_POLICY=passive "$NODE_BIN" __name:=fluid \
     > "$LOG/$1.node.log" 2>&1 &
   PIDS+=($!)
+  if [ "${#launch_args[@]}" -gt 0 ]; then
+    rviz -d "$RVIZ_CONFIG" > "$LOG/$1.rviz.log" 2>&1 &
+    PIDS+=($!)
+  fi
 }
 
 for setup in $ONLY; do
@@ -90,16 +134,23 @@ for setup in $ONLY; do
     rostopic hz "$IMAGE_TOPIC" > "$LOG/$setup.image_hz.log" 2>&1 &
     PIDS+=($!)
   fi
-  sleep "$WARMUP"
+  measure_args=("$SECONDS_MEASURED" /fluid)
+  if [ -n "$SIM_WINDOW" ]; then
+    # shellcheck disable=SC2206  # two numbers
+    measure_args+=(--sim-window $SIM_WINDOW)
+  else
+    sleep "$WARMUP"
+  fi
   echo -n "$setup: "
   if [ -n "$NODE_BIN" ]; then
     PYTHONPATH="$(dirname "$(dirname "$NODE_BIN")")/python3/dist-packages:${PYTHONPATH:-}" \
-      rosrun pbf_ros measure_rtf.py "$SECONDS_MEASURED" /fluid
+      rosrun pbf_ros measure_rtf.py "${measure_args[@]}" || status=1
   else
-    rosrun pbf_ros measure_rtf.py "$SECONDS_MEASURED" /fluid
+    rosrun pbf_ros measure_rtf.py "${measure_args[@]}" || status=1
   fi
   # The node first, then its master (stop_all signals in start order: roscore first).
   for ((k = ${#PIDS[@]} - 1; k >= 0; k--)); do kill -INT "${PIDS[$k]}" 2> /dev/null || true; done
   stop_all
   sleep 2
 done
+exit "$status"
