@@ -39,6 +39,12 @@ RVIZ_CONFIG=""
 SIM_WINDOW=""
 while [ $# -gt 0 ]; do
   case "$1" in
+    --warmup|--seconds|--only|--node-bin|--params|--image-topic|--rviz-config|--sim-window)
+      if [ $# -lt 2 ] || [ -z "$2" ]; then
+        echo "measure_node_rtf.sh: $1 needs a value (see --help)" >&2; exit 2
+      fi ;;
+  esac
+  case "$1" in
     --warmup) WARMUP="$2"; shift ;;
     --seconds) SECONDS_MEASURED="$2"; shift ;;
     --only) ONLY="$2"; shift ;;
@@ -52,6 +58,9 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
+if [ -n "$SIM_WINDOW" ] && [ "$(wc -w <<< "$SIM_WINDOW")" != 2 ]; then
+  echo "measure_node_rtf.sh: --sim-window needs two simulated times, \"A B\" (got '$SIM_WINDOW')" >&2; exit 2
+fi
 for setup in $ONLY; do
   case "$setup" in
     headless|cloud|surface) ;;
