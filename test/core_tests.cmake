@@ -1,11 +1,14 @@
 # Core unit tests: GoogleTest, no ROS master. Built by `make tests`, run by ctest.
 set(PBF_CORE_TESTS kernels neighbor_grid solver_physics solver_robustness scene scene_limits
     boundaries calibration obstacle_shapes signed_distance_grid solids_in_fluid
-    solid_wrenches floating_bodies fluid_sources far_solids warm_start step_allocations)
+    solid_wrenches floating_bodies fluid_sources far_solids warm_start step_allocations
+    neighbor_sums)
 foreach(t ${PBF_CORE_TESTS})
   catkin_add_gtest(test_core_${t} test/core/test_${t}.cpp)
   target_link_libraries(test_core_${t} pbf_core gtest_main)
   target_compile_definitions(test_core_${t} PRIVATE PBF_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 endforeach()
-# The candidate filter's two builds are private to pbf_core; its test compares them.
+# The candidate filter's and the neighbour sums' two builds are private to pbf_core; their
+# tests compare them.
 target_include_directories(test_core_neighbor_grid PRIVATE src/core)
+target_include_directories(test_core_neighbor_sums PRIVATE src/core)

@@ -12,6 +12,15 @@
 #error "compile NeighborSums.cpp with PBF_NEIGHBOR_SUMS_NS set (see cmake/core.cmake)"
 #endif
 
+// The x86-64-v3 build runs the hand-written AVX2 copies of the hot loops (WideNeighborSums.h);
+// the loops below stay the portable reference.
+#if defined(__AVX2__) && defined(__FMA__)
+#define PBF_WIDE_NEIGHBOR_SUMS 1
+#include "WideNeighborSums.h"
+#else
+#define PBF_WIDE_NEIGHBOR_SUMS 0
+#endif
+
 namespace pbf {
 namespace PBF_NEIGHBOR_SUMS_NS {
 
@@ -29,6 +38,9 @@ namespace PBF_NEIGHBOR_SUMS_NS {
 
 LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                       float* pair_gradient) {
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideLambdaSums(a, k, i, pair_gradient);
+#endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
@@ -57,6 +69,9 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
 
 VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
                     const float* pair_gradient) {
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideDeltaSums(a, i, lambda, pair_gradient);
+#endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
@@ -76,6 +91,9 @@ VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
 }
 
 DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i) {
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideDensitySums(a, k, i);
+#endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
@@ -97,6 +115,9 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
 
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                    const float* velocity, const float* density) {
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideXsphSums(a, k, i, velocity, density);
+#endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
@@ -143,6 +164,9 @@ struct ImageOffset {
 static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                                       const Reflection& r, float* pair_gradient,
                                       float* image_gradient) {
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideLambdaSumsWithImage(a, k, i, r, pair_gradient, image_gradient);
+#endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
@@ -283,6 +307,9 @@ VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::s
 VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Reflection& r,
                              const float* lambda, const float* pair_gradient,
                              const float* image_gradient) {
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideDeltaSumsWithImage(a, i, r, lambda, pair_gradient, image_gradient);
+#endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];

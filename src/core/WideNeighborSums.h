@@ -1,0 +1,251 @@
+#pragma once
+// The hot neighbour sums of NeighborSums.cpp written out for AVX2 + FMA, eight neighbours at
+// a time. Included only by the x86-64-v3 build of NeighborSums.cpp (the build's target keeps
+// the portable loops there, which are the reference: test_core_neighbor_grid compares both).
+//
+// Why by hand: GCC's `omp simd` reductions keep their per-lane sums in a stack array, so
+// every pair's additions wait on a store and a load; each list ends in a scalar loop for
+// its last 0-7 neighbours (a list has 30-60); and each pair pays a square root and a
+// division. Here the sums stay in registers, the last group is masked (gathers and stores
+// with a lane mask), and 1/r comes from the reciprocal square root estimate refined by one
+// Newton step (within ~2 float ulps of 1/sqrt). Results differ from the portable loops at
+// float level only, and are the same for any thread count (one particle, one thread, a fixed
+// order of additions).
+//
+// Conventions the portable loops define and these keep: coincident pairs (r^2 at or below
+// coincident2) get no gradient and are counted; a NaN position turns the density sum NaN (the
+// step's guard rejects it), so every max() below puts the value second (vmaxps returns its
+// second operand when one is NaN).
+// Internal linkage throughout: see the top of NeighborSums.cpp.
+
+#include <immintrin.h>
+
+#include <cstddef>
+#include <cstdint>
+
+#include "NeighborSums.h"
+
+namespace pbf {
+namespace PBF_NEIGHBOR_SUMS_NS {
+namespace {
+
+constexpr std::size_t kWidth = 8;
+
+inline __m256 splat(float v) { return _mm256_set1_ps(v); }
+
+// Lanes [e, end) of a group starting at e: all-ones where the lane holds a neighbour.
+inline __m256i validLanes(std::size_t e, std::size_t end) {
+  const std::size_t left = end - e;
+  const int count = left < kWidth ? static_cast<int>(left) : static_cast<int>(kWidth);
+  return _mm256_cmpgt_epi32(_mm256_set1_epi32(count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+}
+
+// One group of up to eight neighbours: their indices and positions (0 in unused lanes).
+struct Group {
+  Group(const NeighborArrays& a, std::size_t e, std::size_t end) : valid(validLanes(e, end)) {
+    index = _mm256_maskload_epi32(reinterpret_cast<const int*>(a.index + e), valid);
+    const __m256i triple = _mm256_add_epi32(index, _mm256_slli_epi32(index, 1));  // 3 j
+    const __m256 mask = _mm256_castsi256_ps(valid);
+    x = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.position, triple, mask, 4);
+    y = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.position + 1, triple, mask, 4);
+    z = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.position + 2, triple, mask, 4);
+    this->triple = triple;
+  }
+  __m256 validMask() const { return _mm256_castsi256_ps(valid); }
+  // A per-particle float array at these neighbours (`fill` in unused lanes).
+  __m256 gather(const float* values, float fill = 0.0f) const {
+    return _mm256_mask_i32gather_ps(splat(fill), values, index, validMask(), 4);
+  }
+  // Component c of a packed x,y,z array at these neighbours.
+  __m256 gatherPacked(const float* values, int c) const {
+    return _mm256_mask_i32gather_ps(_mm256_setzero_ps(), values + c, triple, validMask(), 4);
+  }
+  __m256i valid, index, triple;
+  __m256 x, y, z;
+};
+
+// 1 / sqrt(r2) for r2 > 0, and 0 where r2 is 0 (or NaN: then r2 * rinv stays NaN).
+inline __m256 inverseLength(__m256 r2) {
+  const __m256 y = _mm256_rsqrt_ps(r2);
+  const __m256 refined =
+      _mm256_mul_ps(y, _mm256_fnmadd_ps(_mm256_mul_ps(splat(0.5f), r2), _mm256_mul_ps(y, y), splat(1.5f)));
+  return _mm256_and_ps(refined, _mm256_cmp_ps(r2, _mm256_setzero_ps(), _CMP_GT_OQ));
+}
+
+// Sum of the eight lanes in a fixed order.
+inline float laneSum(__m256 v) {
+  const __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+  const __m128 t = _mm_add_ps(s, _mm_movehl_ps(s, s));
+  return _mm_cvtss_f32(_mm_add_ss(t, _mm_movehdup_ps(t)));
+}
+
+inline int laneCount(__m256 mask) { return __builtin_popcount(_mm256_movemask_ps(mask)); }
+
+// Kernel terms of one pair distance: (h - r)_+ (0 in unused lanes) and the gradient factor
+// spiky (h - r)_+^2 / r (0 for coincident pairs and unused lanes).
+struct SpikyTerms {
+  SpikyTerms(__m256 r2, __m256 valid, const PairConstants& k) {
+    const __m256 rinv = inverseLength(r2);
+    dl = _mm256_and_ps(_mm256_max_ps(_mm256_setzero_ps(), _mm256_sub_ps(splat(k.h), _mm256_mul_ps(r2, rinv))),
+                       valid);
+    directed = _mm256_and_ps(_mm256_cmp_ps(r2, splat(k.coincident2), _CMP_GT_OQ), valid);
+    g = _mm256_and_ps(_mm256_mul_ps(_mm256_mul_ps(splat(k.spiky), _mm256_mul_ps(dl, dl)), rinv), directed);
+  }
+  __m256 cube() const { return _mm256_mul_ps(_mm256_mul_ps(dl, dl), dl); }
+  __m256 dl, directed, g;
+};
+
+inline LambdaSums wideLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                                 float* pair_gradient) {
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
+               zi = splat(a.position[3 * i + 2]);
+  __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
+  int coincident = 0;
+  for (std::size_t e = begin; e < end; e += kWidth) {
+    const Group n(a, e, end);
+    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
+    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+    const SpikyTerms t(r2, n.validMask(), k);
+    _mm256_maskstore_ps(pair_gradient + e, n.valid, t.g);
+    coincident += laneCount(_mm256_andnot_ps(t.directed, n.validMask()));
+    rho = _mm256_fmadd_ps(splat(k.density), t.cube(), rho);
+    gx = _mm256_fmadd_ps(t.g, dx, gx);
+    gy = _mm256_fmadd_ps(t.g, dy, gy);
+    gz = _mm256_fmadd_ps(t.g, dz, gz);
+    grad2 = _mm256_fmadd_ps(_mm256_mul_ps(t.g, t.g), r2, grad2);
+  }
+  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident};
+}
+
+inline VectorSum wideDeltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
+                               const float* pair_gradient) {
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
+               zi = splat(a.position[3 * i + 2]), li = splat(lambda[i]);
+  __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
+  for (std::size_t e = begin; e < end; e += kWidth) {
+    const Group n(a, e, end);
+    const __m256 factor = _mm256_maskload_ps(pair_gradient + e, n.valid);  // 0 in unused lanes
+    const __m256 g = _mm256_mul_ps(_mm256_add_ps(li, n.gather(lambda)), factor);
+    sx = _mm256_fmadd_ps(g, _mm256_sub_ps(xi, n.x), sx);
+    sy = _mm256_fmadd_ps(g, _mm256_sub_ps(yi, n.y), sy);
+    sz = _mm256_fmadd_ps(g, _mm256_sub_ps(zi, n.z), sz);
+  }
+  return {laneSum(sx), laneSum(sy), laneSum(sz)};
+}
+
+inline DensitySum wideDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i) {
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
+               zi = splat(a.position[3 * i + 2]);
+  __m256 rho = _mm256_setzero_ps();
+  std::uint32_t count = 0;
+  for (std::size_t e = begin; e < end; e += kWidth) {
+    const Group n(a, e, end);
+    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
+    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+    const SpikyTerms t(r2, n.validMask(), k);
+    rho = _mm256_fmadd_ps(splat(k.density), t.cube(), rho);
+    count += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, splat(k.h2), _CMP_LT_OQ), n.validMask()));
+  }
+  return {laneSum(rho), count};
+}
+
+inline VectorSum wideXsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                              const float* velocity, const float* density) {
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
+               zi = splat(a.position[3 * i + 2]);
+  const __m256 ux = splat(velocity[3 * i]), uy = splat(velocity[3 * i + 1]), uz = splat(velocity[3 * i + 2]);
+  __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
+  for (std::size_t e = begin; e < end; e += kWidth) {
+    const Group n(a, e, end);
+    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
+    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+    const __m256 w = _mm256_and_ps(_mm256_max_ps(_mm256_setzero_ps(), _mm256_sub_ps(splat(k.h2), r2)),
+                                   n.validMask());
+    // V_j W_ij; unused lanes divide 0 by 1.
+    const __m256 f = _mm256_div_ps(_mm256_mul_ps(_mm256_mul_ps(splat(k.poly6), w), _mm256_mul_ps(w, w)),
+                                   n.gather(density, 1.0f));
+    sx = _mm256_fmadd_ps(f, _mm256_sub_ps(n.gatherPacked(velocity, 0), ux), sx);
+    sy = _mm256_fmadd_ps(f, _mm256_sub_ps(n.gatherPacked(velocity, 1), uy), sy);
+    sz = _mm256_fmadd_ps(f, _mm256_sub_ps(n.gatherPacked(velocity, 2), uz), sz);
+  }
+  return {laneSum(sx), laneSum(sy), laneSum(sz)};
+}
+
+// x_i minus the mirror image m x_j + b of eight neighbours (ImageOffset in NeighborSums.cpp).
+struct WideImageOffset {
+  WideImageOffset(const Reflection& r, float xi, float yi, float zi) {
+    for (int c = 0; c < 9; ++c) m[c] = splat(r.m[c]);
+    bx = splat(xi - r.b[0]), by = splat(yi - r.b[1]), bz = splat(zi - r.b[2]);
+  }
+  __m256 row(int c, __m256 x, __m256 y, __m256 z) const {
+    return _mm256_fmadd_ps(m[3 * c + 2], z, _mm256_fmadd_ps(m[3 * c + 1], y, _mm256_mul_ps(m[3 * c], x)));
+  }
+  __m256 dx(__m256 x, __m256 y, __m256 z) const { return _mm256_sub_ps(bx, row(0, x, y, z)); }
+  __m256 dy(__m256 x, __m256 y, __m256 z) const { return _mm256_sub_ps(by, row(1, x, y, z)); }
+  __m256 dz(__m256 x, __m256 y, __m256 z) const { return _mm256_sub_ps(bz, row(2, x, y, z)); }
+  __m256 m[9], bx, by, bz;
+};
+
+// lambdaSumsWithImage of NeighborSums.cpp (one reflection): see there for the equations.
+inline LambdaSums wideLambdaSumsWithImage(const NeighborArrays& a, const PairConstants& k,
+                                          std::size_t i, const Reflection& r, float* pair_gradient,
+                                          float* image_gradient) {
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
+  const __m256 xi = splat(pxi), yi = splat(pyi), zi = splat(pzi);
+  const WideImageOffset o(r, pxi, pyi, pzi);
+  const __m256 rix = _mm256_sub_ps(xi, o.dx(xi, yi, zi)), riy = _mm256_sub_ps(yi, o.dy(xi, yi, zi)),
+               riz = _mm256_sub_ps(zi, o.dz(xi, yi, zi));  // R x_i
+  __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
+  int coincident = 0;
+  for (std::size_t e = begin; e < end; e += kWidth) {
+    const Group n(a, e, end);
+    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
+    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+    const SpikyTerms t(r2, n.validMask(), k);
+    _mm256_maskstore_ps(pair_gradient + e, n.valid, t.g);
+    coincident += laneCount(_mm256_andnot_ps(t.directed, n.validMask()));
+    const __m256 ex = o.dx(n.x, n.y, n.z), ey = o.dy(n.x, n.y, n.z), ez = o.dz(n.x, n.y, n.z);
+    const __m256 s2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
+    const SpikyTerms s(s2, n.validMask(), k);
+    _mm256_maskstore_ps(image_gradient + e, n.valid, s.g);
+    rho = _mm256_fmadd_ps(splat(k.density), _mm256_add_ps(t.cube(), s.cube()), rho);
+    gx = _mm256_fmadd_ps(s.g, ex, _mm256_fmadd_ps(t.g, dx, gx));
+    gy = _mm256_fmadd_ps(s.g, ey, _mm256_fmadd_ps(t.g, dy, gy));
+    gz = _mm256_fmadd_ps(s.g, ez, _mm256_fmadd_ps(t.g, dz, gz));
+    const __m256 vx = _mm256_fmadd_ps(s.g, _mm256_sub_ps(rix, n.x), _mm256_mul_ps(t.g, dx));
+    const __m256 vy = _mm256_fmadd_ps(s.g, _mm256_sub_ps(riy, n.y), _mm256_mul_ps(t.g, dy));
+    const __m256 vz = _mm256_fmadd_ps(s.g, _mm256_sub_ps(riz, n.z), _mm256_mul_ps(t.g, dz));
+    grad2 = _mm256_fmadd_ps(vz, vz, _mm256_fmadd_ps(vy, vy, _mm256_fmadd_ps(vx, vx, grad2)));
+  }
+  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident};
+}
+
+// deltaSumsWithImage of NeighborSums.cpp.
+inline VectorSum wideDeltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Reflection& r,
+                                        const float* lambda, const float* pair_gradient,
+                                        const float* image_gradient) {
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
+  const __m256 xi = splat(pxi), yi = splat(pyi), zi = splat(pzi), li = splat(lambda[i]);
+  const WideImageOffset o(r, pxi, pyi, pzi);
+  __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
+  for (std::size_t e = begin; e < end; e += kWidth) {
+    const Group n(a, e, end);
+    const __m256 lij = _mm256_add_ps(li, n.gather(lambda));
+    const __m256 g = _mm256_mul_ps(lij, _mm256_maskload_ps(pair_gradient + e, n.valid));
+    const __m256 gi = _mm256_mul_ps(lij, _mm256_maskload_ps(image_gradient + e, n.valid));
+    sx = _mm256_fmadd_ps(gi, o.dx(n.x, n.y, n.z), _mm256_fmadd_ps(g, _mm256_sub_ps(xi, n.x), sx));
+    sy = _mm256_fmadd_ps(gi, o.dy(n.x, n.y, n.z), _mm256_fmadd_ps(g, _mm256_sub_ps(yi, n.y), sy));
+    sz = _mm256_fmadd_ps(gi, o.dz(n.x, n.y, n.z), _mm256_fmadd_ps(g, _mm256_sub_ps(zi, n.z), sz));
+  }
+  return {laneSum(sx), laneSum(sy), laneSum(sz)};
+}
+
+}  // namespace
+}  // namespace PBF_NEIGHBOR_SUMS_NS
+}  // namespace pbf
