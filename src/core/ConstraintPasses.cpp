@@ -88,6 +88,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   image_gradient_.resize(images.isOn() ? grid_->indices().size() : 0);
   float* GI = image_gradient_.data();
   has_coincident_pair_.resize(n);
+  neighbor_count_.resize(n);
   if (walls) wall_gradient_.resize(n);
   // A warm-started or accelerated solve may take back what it pushed (kReleaseRelaxation).
   const bool projected = params_.projectedSolve();
@@ -102,6 +103,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
     const LambdaSums s = reflections == 0 ? lambdaSums(arrays, pc, i, G)
                                           : lambdaSumsWithImages(arrays, pc, i, refl, reflections, G, GI);
     has_coincident_pair_[i] = s.coincident > 0;  // the delta-p pass sees the same positions
+    neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(s.within, 65535));
     float rho = self_density + s.rho, gx = s.gx, gy = s.gy, gz = s.gz, sum_grad2 = s.sum_grad2;
     if (s.coincident > 0) {  // rare: redo the gradients with directions for coincident pairs
       Eigen::Vector3f gi = Eigen::Vector3f::Zero();

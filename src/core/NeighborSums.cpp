@@ -45,10 +45,11 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
-  const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
+  const float h = k.h, h2 = k.h2, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
-#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
+  std::uint32_t within = 0;
+#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident, within)
   for (std::size_t e = begin; e < end; ++e) {
     const int j = static_cast<int>(nbr[e]);
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
@@ -59,12 +60,13 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
     const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
     pair_gradient[e] = g;
     coincident += r2 <= tiny2 ? 1 : 0;
+    within += r2 < h2 ? 1u : 0u;
     gx += g * dx;
     gy += g * dy;
     gz += g * dz;
     sum_grad2 += g * g * r2;
   }
-  return {rho, gx, gy, gz, sum_grad2, coincident};
+  return {rho, gx, gy, gz, sum_grad2, coincident, within};
 }
 
 VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
@@ -173,10 +175,11 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
   const ImageOffset o(r, xi, yi, zi);
   const float rix = xi - o.dx(xi, yi, zi), riy = yi - o.dy(xi, yi, zi), riz = zi - o.dz(xi, yi, zi);  // R x_i
-  const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
+  const float h = k.h, h2 = k.h2, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
-#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident)
+  std::uint32_t within = 0;
+#pragma omp simd reduction(+ : rho, gx, gy, gz, sum_grad2, coincident, within)
   for (std::size_t e = begin; e < end; ++e) {
     const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
@@ -187,6 +190,7 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
     const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
     pair_gradient[e] = g;
     coincident += r2 <= tiny2 ? 1 : 0;
+    within += r2 < h2 ? 1u : 0u;
     const float ex = o.dx(x, y, z), ey = o.dy(x, y, z), ez = o.dz(x, y, z);
     const float s2 = ex * ex + ey * ey + ez * ez;
     const float slen = std::sqrt(s2);
@@ -200,7 +204,7 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
     const float vx = g * dx + gi * (rix - x), vy = g * dy + gi * (riy - y), vz = g * dz + gi * (riz - z);
     sum_grad2 += vx * vx + vy * vy + vz * vz;
   }
-  return {rho, gx, gy, gz, sum_grad2, coincident};
+  return {rho, gx, gy, gz, sum_grad2, coincident, within};
 }
 
 LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k, std::size_t i,
@@ -210,10 +214,11 @@ LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k,
   // Two or three walls (edges, corners: few particles): the same, scalar over the reflections.
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
-  const float h = k.h, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
+  const float h = k.h, h2 = k.h2, density = k.density, spiky = k.spiky, tiny2 = k.coincident2;
   const float xi = P[3 * i], yi = P[3 * i + 1], zi = P[3 * i + 2];
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
+  std::uint32_t within = 0;
   for (std::size_t e = a.offset[i]; e < a.offset[i + 1]; ++e) {
     const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
@@ -224,6 +229,7 @@ LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k,
     const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
     pair_gradient[e] = g;
     coincident += r2 <= tiny2 ? 1 : 0;
+    within += r2 < h2 ? 1u : 0u;
     rho += density * dl * dl * dl;
     gx += g * dx, gy += g * dy, gz += g * dz;
     float vx = g * dx, vy = g * dy, vz = g * dz;
@@ -247,7 +253,7 @@ LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k,
     }
     sum_grad2 += vx * vx + vy * vy + vz * vz;
   }
-  return {rho, gx, gy, gz, sum_grad2, coincident};
+  return {rho, gx, gy, gz, sum_grad2, coincident, within};
 }
 LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                            const Reflection& r) {
@@ -275,7 +281,7 @@ LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std:
     gz += g * dz;
     sum_grad2 += g * g * r2;
   }
-  return {rho, gx, gy, gz, sum_grad2, coincident};
+  return {rho, gx, gy, gz, sum_grad2, coincident, 0};
 }
 
 VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,

@@ -31,10 +31,12 @@ struct PairConstants {
 
 // Density, constraint gradient sum and sum of squared gradients of particle i (the lambda
 // pass, eq 8-9). Writes each pair's gradient factor g (grad = g * r) to pair_gradient for
-// the delta-p pass. `coincident` counts pairs without a direction (left out of the sums).
+// the delta-p pass. `coincident` counts pairs without a direction (left out of the sums),
+// `within` the neighbours closer than h (images not counted), as densitySums does.
 struct LambdaSums {
   float rho, gx, gy, gz, sum_grad2;
   int coincident;
+  std::uint32_t within;
 };
 LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                       float* pair_gradient);

@@ -243,6 +243,7 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   // then gained energy (pbf_stress, raft and buoy: 8 J where 0.06 J is allowed).
   chebyshev_->begin(predicted_, track_wrenches_ ? 0.0f : params_.chebyshev_rho);
   float previous_error = std::numeric_limits<float>::infinity();
+  bool ended_on_lambda_pass = false;  // the last pass measured the density: see below
   while (iter < params_.max_iterations) {
     // With a warm start the first correction applies the previous step's pressure with this
     // step's gradients: the one correction a Jacobi step cannot make itself, because it
@@ -256,8 +257,10 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
     if (pass == LambdaPass::kNewton && avg_error > previous_error) chebyshev_->restart();
     previous_error = avg_error;
     if (pass == LambdaPass::kNewton && use_tolerance && iter >= params_.min_iterations &&
-        avg_error <= params_.density_tolerance)
+        avg_error <= params_.density_tolerance) {
+      ended_on_lambda_pass = true;
       break;
+    }
     correctPositions(pass);
     if (chebyshev_->isOn()) chebyshev_->extrapolate(predicted_, boundaries());
     ++iter;
@@ -273,16 +276,21 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   stats.times.solve_ms += msSince(t);
 
   t = Clock::now();
-  updateVelocities(dt);
+  const bool settled_elsewhere = updateVelocities(dt);
+  bool reordered = false;
   try {
-    keepListsValidFor(position_, stats);
+    reordered = keepListsValidFor(position_, stats);
   } catch (const std::length_error&) {
     return false;
   }
   stats.times.other_ms += msSince(t);
 
   t = Clock::now();
-  computeDensityAndVorticity();
+  // A solve that ended on its tolerance measured the density at the final positions in its
+  // last lambda pass: unless something moved or reordered the particles since, the step's
+  // density pass would compute it again.
+  const bool density_known = ended_on_lambda_pass && !settled_elsewhere && !reordered;
+  computeDensityAndVorticity(density_known);
   if (params_.xsph_viscosity > 0.0f || params_.vorticity_epsilon > 0.0f) applyViscosityAndVorticity(dt);
   stats.times.viscosity_vorticity_ms += msSince(t);
 
@@ -292,6 +300,7 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   if (params_.xsph_viscosity <= 0.0f) stats.skipped_stages.add(SkippedStages::kXsph);
   if (params_.scorr_k <= 0.0f) stats.skipped_stages.add(SkippedStages::kScorr);
   if (stats.neighbor_lists_reused) stats.skipped_stages.add(SkippedStages::kNeighborSearch);
+  if (density_known) stats.skipped_stages.add(SkippedStages::kDensityPass);
   if (use_tolerance && stats.iterations < params_.max_iterations)
     stats.skipped_stages.add(SkippedStages::kIterationsAfterTolerance);
   const bool finite = stateIsFinite();

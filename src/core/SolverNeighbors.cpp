@@ -74,11 +74,12 @@ void PbfSolver::rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points)
 
 // The solver's corrections move particles too, so the skin is checked after each of them,
 // not only once per step; a particle that went too far triggers a rebuild right there.
-void PbfSolver::keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats) {
-  if (params_.neighbor_skin <= 0.0f) return;  // built once per step on the predicted positions
-  if (listsStillValidFor(points)) return;
+bool PbfSolver::keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats) {
+  if (params_.neighbor_skin <= 0.0f) return false;  // built once per step on the predicted positions
+  if (listsStillValidFor(points)) return false;
   rebuildNeighborLists(points);
   ++stats.neighbor_rebuilds_in_step;
+  return true;
 }
 
 }  // namespace pbf

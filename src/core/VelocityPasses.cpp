@@ -43,7 +43,7 @@ Eigen::Vector3f sumVolumeGradients(const Kernels& k, float mass, std::size_t i,
 
 }  // namespace
 
-void PbfSolver::updateVelocities(float dt) {
+bool PbfSolver::updateVelocities(float dt) {
   const std::size_t n = size();
   const float inv_dt = 1.0f / dt;
   const SolidBoundaries solids = boundaries();
@@ -72,25 +72,28 @@ void PbfSolver::updateVelocities(float dt) {
     }
     velocity_[i] = (p - position_[i]) * inv_dt;
     position_[i] = p;
+    return p != predicted_[i];
   };
+  bool moved = false;
   if (!track_wrenches_) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) reduction(|| : moved)
     for (std::size_t i = 0; i < n; ++i)
-      settle(i, [](int, const Eigen::Vector3f&, const Eigen::Vector3f&) {});
-    return;
+      moved = settle(i, [](int, const Eigen::Vector3f&, const Eigen::Vector3f&) {}) || moved;
+    return moved;
   }
-#pragma omp parallel
+#pragma omp parallel reduction(|| : moved)
   {
     const int thread = omp_get_thread_num();
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
-      settle(i, [&](int s, const Eigen::Vector3f& x, const Eigen::Vector3f& dx) {
-        wrench_sums_.add(thread, s, x, dx);
-      });
+      moved = settle(i, [&](int s, const Eigen::Vector3f& x, const Eigen::Vector3f& dx) {
+                wrench_sums_.add(thread, s, x, dx);
+              }) || moved;
   }
+  return moved;
 }
 
-void PbfSolver::computeDensityAndVorticity() {
+void PbfSolver::computeDensityAndVorticity(bool density_known) {
   const std::size_t n = size();
   const Kernels k(params_.supportRadius());
   const auto& off = grid_->offsets();
@@ -110,27 +113,29 @@ void PbfSolver::computeDensityAndVorticity() {
   const PairConstants pc{k.h, k.h2, 0.0f, density_mass * k.spiky_coef, 0.0f, 0.0f};
 
   // Density first (vorticity needs every density).
+  if (!density_known) {
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f pi = position_[i];
-    const DensitySum s = densitySums(arrays, pc, i);
-    const float rho = self_density + s.rho;
-    const std::uint32_t count = s.count;
-    float wall = 0.0f;
-    Reflection refl[ContainerMirror::kMaxReflections];
-    const int reflections = images.reflections(pi, refl);
-    for (int q = 0; q < reflections; ++q) {
-      wall += imageDensitySums(arrays, pc, i, refl[q]).rho;
-      const float rlen = ContainerMirror::imageOffset(refl[q], arrays.position, i, i).norm();
-      wall += density_mass * k.spiky(rlen);  // zero beyond h
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3f pi = position_[i];
+      const DensitySum s = densitySums(arrays, pc, i);
+      const float rho = self_density + s.rho;
+      const std::uint32_t count = s.count;
+      float wall = 0.0f;
+      Reflection refl[ContainerMirror::kMaxReflections];
+      const int reflections = images.reflections(pi, refl);
+      for (int q = 0; q < reflections; ++q) {
+        wall += imageDensitySums(arrays, pc, i, refl[q]).rho;
+        const float rlen = ContainerMirror::imageOffset(refl[q], arrays.position, i, i).norm();
+        wall += density_mass * k.spiky(rlen);  // zero beyond h
+      }
+      if (walls) {
+        float fraction = 0.0f;
+        Eigen::Vector3f unused = Eigen::Vector3f::Zero();
+        if (solids.density(pi, fraction, unused)) wall += params_.rest_density * fraction;
+      }
+      density_[i] = rho + wall;
+      neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
     }
-    if (walls) {
-      float fraction = 0.0f;
-      Eigen::Vector3f unused = Eigen::Vector3f::Zero();
-      if (solids.density(pi, fraction, unused)) wall += params_.rest_density * fraction;
-    }
-    density_[i] = rho + wall;
-    neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
   }
   if (!vorticity) return;
   // omega_i = sum_j V_j grad_i W_ij x (v_j - v_i): the SPH curl of the velocity.

@@ -81,15 +81,23 @@ inline float laneSum(__m256 v) {
 
 inline int laneCount(__m256 mask) { return __builtin_popcount(_mm256_movemask_ps(mask)); }
 
+// A pass's kernel constants in every lane, loaded once per particle: inside the loop the
+// compiler would reload them after every store (they could alias the stored arrays).
+struct WideConstants {
+  explicit WideConstants(const PairConstants& k)
+      : h(splat(k.h)), h2(splat(k.h2)), poly6(splat(k.poly6)), density(splat(k.density)),
+        spiky(splat(k.spiky)), coincident2(splat(k.coincident2)) {}
+  __m256 h, h2, poly6, density, spiky, coincident2;
+};
+
 // Kernel terms of one pair distance: (h - r)_+ (0 in unused lanes) and the gradient factor
 // spiky (h - r)_+^2 / r (0 for coincident pairs and unused lanes).
 struct SpikyTerms {
-  SpikyTerms(__m256 r2, __m256 valid, const PairConstants& k) {
+  SpikyTerms(__m256 r2, __m256 valid, const WideConstants& k) {
     const __m256 rinv = inverseLength(r2);
-    dl = _mm256_and_ps(_mm256_max_ps(_mm256_setzero_ps(), _mm256_sub_ps(splat(k.h), _mm256_mul_ps(r2, rinv))),
-                       valid);
-    directed = _mm256_and_ps(_mm256_cmp_ps(r2, splat(k.coincident2), _CMP_GT_OQ), valid);
-    g = _mm256_and_ps(_mm256_mul_ps(_mm256_mul_ps(splat(k.spiky), _mm256_mul_ps(dl, dl)), rinv), directed);
+    dl = _mm256_and_ps(_mm256_max_ps(_mm256_setzero_ps(), _mm256_sub_ps(k.h, _mm256_mul_ps(r2, rinv))), valid);
+    directed = _mm256_and_ps(_mm256_cmp_ps(r2, k.coincident2, _CMP_GT_OQ), valid);
+    g = _mm256_and_ps(_mm256_mul_ps(_mm256_mul_ps(k.spiky, _mm256_mul_ps(dl, dl)), rinv), directed);
   }
   __m256 cube() const { return _mm256_mul_ps(_mm256_mul_ps(dl, dl), dl); }
   __m256 dl, directed, g;
@@ -97,25 +105,28 @@ struct SpikyTerms {
 
 inline LambdaSums wideLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                                  float* pair_gradient) {
+  const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
                zi = splat(a.position[3 * i + 2]);
   __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
   int coincident = 0;
+  std::uint32_t within = 0;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
     const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
     const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-    const SpikyTerms t(r2, n.validMask(), k);
+    const SpikyTerms t(r2, n.validMask(), wk);
     _mm256_maskstore_ps(pair_gradient + e, n.valid, t.g);
     coincident += laneCount(_mm256_andnot_ps(t.directed, n.validMask()));
-    rho = _mm256_fmadd_ps(splat(k.density), t.cube(), rho);
+    within += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, wk.h2, _CMP_LT_OQ), n.validMask()));
+    rho = _mm256_fmadd_ps(wk.density, t.cube(), rho);
     gx = _mm256_fmadd_ps(t.g, dx, gx);
     gy = _mm256_fmadd_ps(t.g, dy, gy);
     gz = _mm256_fmadd_ps(t.g, dz, gz);
     grad2 = _mm256_fmadd_ps(_mm256_mul_ps(t.g, t.g), r2, grad2);
   }
-  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident};
+  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident, within};
 }
 
 inline VectorSum wideDeltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
@@ -136,6 +147,7 @@ inline VectorSum wideDeltaSums(const NeighborArrays& a, std::size_t i, const flo
 }
 
 inline DensitySum wideDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i) {
+  const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
                zi = splat(a.position[3 * i + 2]);
@@ -145,15 +157,16 @@ inline DensitySum wideDensitySums(const NeighborArrays& a, const PairConstants& 
     const Group n(a, e, end);
     const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
     const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-    const SpikyTerms t(r2, n.validMask(), k);
-    rho = _mm256_fmadd_ps(splat(k.density), t.cube(), rho);
-    count += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, splat(k.h2), _CMP_LT_OQ), n.validMask()));
+    const SpikyTerms t(r2, n.validMask(), wk);
+    rho = _mm256_fmadd_ps(wk.density, t.cube(), rho);
+    count += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, wk.h2, _CMP_LT_OQ), n.validMask()));
   }
   return {laneSum(rho), count};
 }
 
 inline VectorSum wideXsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                               const float* velocity, const float* density) {
+  const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
                zi = splat(a.position[3 * i + 2]);
@@ -163,10 +176,10 @@ inline VectorSum wideXsphSums(const NeighborArrays& a, const PairConstants& k, s
     const Group n(a, e, end);
     const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
     const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-    const __m256 w = _mm256_and_ps(_mm256_max_ps(_mm256_setzero_ps(), _mm256_sub_ps(splat(k.h2), r2)),
+    const __m256 w = _mm256_and_ps(_mm256_max_ps(_mm256_setzero_ps(), _mm256_sub_ps(wk.h2, r2)),
                                    n.validMask());
     // V_j W_ij; unused lanes divide 0 by 1.
-    const __m256 f = _mm256_div_ps(_mm256_mul_ps(_mm256_mul_ps(splat(k.poly6), w), _mm256_mul_ps(w, w)),
+    const __m256 f = _mm256_div_ps(_mm256_mul_ps(_mm256_mul_ps(wk.poly6, w), _mm256_mul_ps(w, w)),
                                    n.gather(density, 1.0f));
     sx = _mm256_fmadd_ps(f, _mm256_sub_ps(n.gatherPacked(velocity, 0), ux), sx);
     sy = _mm256_fmadd_ps(f, _mm256_sub_ps(n.gatherPacked(velocity, 1), uy), sy);
@@ -194,6 +207,7 @@ struct WideImageOffset {
 inline LambdaSums wideLambdaSumsWithImage(const NeighborArrays& a, const PairConstants& k,
                                           std::size_t i, const Reflection& r, float* pair_gradient,
                                           float* image_gradient) {
+  const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
   const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
   const __m256 xi = splat(pxi), yi = splat(pyi), zi = splat(pzi);
@@ -202,18 +216,20 @@ inline LambdaSums wideLambdaSumsWithImage(const NeighborArrays& a, const PairCon
                riz = _mm256_sub_ps(zi, o.dz(xi, yi, zi));  // R x_i
   __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
   int coincident = 0;
+  std::uint32_t within = 0;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
     const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
     const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-    const SpikyTerms t(r2, n.validMask(), k);
+    const SpikyTerms t(r2, n.validMask(), wk);
     _mm256_maskstore_ps(pair_gradient + e, n.valid, t.g);
     coincident += laneCount(_mm256_andnot_ps(t.directed, n.validMask()));
+    within += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, wk.h2, _CMP_LT_OQ), n.validMask()));
     const __m256 ex = o.dx(n.x, n.y, n.z), ey = o.dy(n.x, n.y, n.z), ez = o.dz(n.x, n.y, n.z);
     const __m256 s2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
-    const SpikyTerms s(s2, n.validMask(), k);
+    const SpikyTerms s(s2, n.validMask(), wk);
     _mm256_maskstore_ps(image_gradient + e, n.valid, s.g);
-    rho = _mm256_fmadd_ps(splat(k.density), _mm256_add_ps(t.cube(), s.cube()), rho);
+    rho = _mm256_fmadd_ps(wk.density, _mm256_add_ps(t.cube(), s.cube()), rho);
     gx = _mm256_fmadd_ps(s.g, ex, _mm256_fmadd_ps(t.g, dx, gx));
     gy = _mm256_fmadd_ps(s.g, ey, _mm256_fmadd_ps(t.g, dy, gy));
     gz = _mm256_fmadd_ps(s.g, ez, _mm256_fmadd_ps(t.g, dz, gz));
@@ -222,7 +238,7 @@ inline LambdaSums wideLambdaSumsWithImage(const NeighborArrays& a, const PairCon
     const __m256 vz = _mm256_fmadd_ps(s.g, _mm256_sub_ps(riz, n.z), _mm256_mul_ps(t.g, dz));
     grad2 = _mm256_fmadd_ps(vz, vz, _mm256_fmadd_ps(vy, vy, _mm256_fmadd_ps(vx, vx, grad2)));
   }
-  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident};
+  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident, within};
 }
 
 // deltaSumsWithImage of NeighborSums.cpp.

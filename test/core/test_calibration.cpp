@@ -293,6 +293,70 @@ TEST(Calibration, ReusedNeighbourListsNeverMissAPairWithinH) {
   EXPECT_GT(reused, 5) << "the test must exercise reuse";
 }
 
+// A solve that ends on its tolerance measured the density at the final positions in its last
+// lambda pass, and the step keeps those (no density pass): they must still be the densities
+// and neighbour counts of the positions the step ends with, also when the lists were reused.
+TEST(Calibration, DensitiesKeptFromTheSolveAreTheFinalPositionsDensities) {
+  pbf::SolverParams p;
+  p.gravity.setZero();
+  p.neighbor_skin = 0.5f;
+  p.min_iterations = 1;
+  p.density_tolerance = 0.01f;
+  p.max_speed_factor = 0.0f;
+  pbf::PbfSolver solver;
+  solver.setParams(p);
+  solver.setContainer(Eigen::AlignedBox3f());
+  Points x;  // a compressed block: the solve has work to do, and ends on its tolerance
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j)
+      for (int k = 0; k < 8; ++k) x.emplace_back(0.9f * p.particle_spacing * Eigen::Vector3f(i, j, k));
+  solver.setParticles(x);
+  const pbf::Kernels k(p.supportRadius());
+  int kept = 0;
+  for (int s = 0; s < 15; ++s) {
+    const pbf::StepStats st = solver.stepWith(2e-3f);
+    kept += st.skipped_stages.has(pbf::SkippedStages::kDensityPass) ? 1 : 0;
+    const Points& pos = solver.positions();
+    for (std::size_t i = 0; i < pos.size(); ++i) {
+      double rho = 0.0;
+      int within = 0;
+      for (std::size_t j = 0; j < pos.size(); ++j) {
+        const float r = (pos[i] - pos[j]).norm();
+        rho += p.densityMass() * k.spiky(r);
+        within += j != i && r < k.h ? 1 : 0;
+      }
+      ASSERT_NEAR(solver.densities()[i], rho, 1e-4 * rho) << "step " << s << ", particle " << i;
+      ASSERT_EQ(solver.neighborCounts()[i], within) << "step " << s << ", particle " << i;
+    }
+  }
+  EXPECT_GT(kept, 5) << "the test must exercise the kept densities";
+}
+
+// Wall friction moves the particles it drags after the solve: then the step measures the
+// density again instead of keeping the solve's.
+TEST(Calibration, FrictionAfterTheSolveGetsItsOwnDensityPass) {
+  pbf::SolverParams p;
+  p.min_iterations = 1;
+  p.density_tolerance = 0.01f;
+  p.wall_friction = 1.0f;
+  pbf::PbfSolver solver;
+  solver.setParams(p);
+  solver.setContainer(Eigen::AlignedBox3f(Eigen::Vector3f::Zero(), Eigen::Vector3f(0.4f, 0.4f, 0.4f)));
+  Points x, v;  // one layer sliding along the floor
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      x.emplace_back(p.particle_spacing * Eigen::Vector3f(i + 0.5f, j + 0.5f, 0.5f));
+      v.emplace_back(0.5f, 0.0f, 0.0f);
+    }
+  solver.setParticles(x, v);
+  for (int s = 0; s < 5; ++s) {
+    const pbf::StepStats st = solver.stepWith(2e-3f);
+    ASSERT_FALSE(st.failed);
+    EXPECT_FALSE(st.skipped_stages.has(pbf::SkippedStages::kDensityPass)) << "step " << s;
+  }
+  EXPECT_LT(solver.velocities()[0].x(), 0.5f);  // friction acted
+}
+
 // The grid covers the fluid, not the container: a small ball of fluid in a 20 m container
 // needs no more cells than in a 0.4 m one.
 TEST(Calibration, NeighbourGridFollowsTheFluidNotTheContainer) {

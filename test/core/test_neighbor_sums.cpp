@@ -80,6 +80,7 @@ struct ReferenceLambda {
       const double r2 = d.x * d.x + d.y * d.y + d.z * d.z, r = std::sqrt(r2);
       const double dl = std::max(h - r, 0.0);
       rho += k.density * dl * dl * dl;
+      within += r2 < static_cast<double>(k.h2) ? 1 : 0;
       double g = 0.0;
       if (r2 > k.coincident2) g = k.spiky * dl * dl / r;
       else ++coincident;
@@ -104,6 +105,7 @@ struct ReferenceLambda {
   double rho = 0, sum_grad2 = 0;
   Vec grad;
   int coincident = 0;
+  std::uint32_t within = 0;
   std::vector<double> gradient, image_gradient;
 };
 
@@ -158,6 +160,7 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
         expectNear(s.gz, ref.grad.z, grad_scale, "gradient z", count);
         expectNear(s.sum_grad2, ref.sum_grad2, grad_scale * grad_scale, "sum of squared gradients", count);
         EXPECT_EQ(s.coincident, ref.coincident) << count;
+        EXPECT_EQ(s.within, ref.within) << count;
         for (std::size_t e = 0; e < g.size(); ++e) {
           const bool listed = e >= c.offset[0] && e < c.offset[1];
           if (!listed) {  // the masked group writes nothing outside the list

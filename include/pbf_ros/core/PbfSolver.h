@@ -111,9 +111,11 @@ class PbfSolver {
   void updateNeighbors(StepStats& stats);
   void rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points);
   bool listsStillValidFor(const std::vector<Eigen::Vector3f>& points) const;
-  void keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats);
-  // Measures the density at the predicted positions and sets each particle's multiplier
-  // for the next delta-p pass: eq 11's (the warm start pass: the kept one instead).
+  // True when it rebuilt them (and so reordered the particles).
+  bool keepListsValidFor(const std::vector<Eigen::Vector3f>& points, StepStats& stats);
+  // Measures the density (and counts the neighbours within h) at the predicted positions and
+  // sets each particle's multiplier for the next delta-p pass: eq 11's (the warm start
+  // pass: the kept one instead).
   enum class LambdaPass { kNewton, kWarmStart };
   void computeLambdas(float& avg_error, LambdaPass pass = LambdaPass::kNewton);
   // Scales (or clears) the multipliers kept from the last step for a step of dt; true when
@@ -126,7 +128,9 @@ class PbfSolver {
   void computeScorrScales(const Scorr& scorr);
   Eigen::Vector3f pairGradient(std::size_t i, std::uint32_t j) const;  // grad_i W, exact path
   void applyDeltasAndBoundary();
-  void updateVelocities(float dt);
+  // True when some particle settled elsewhere than its corrected prediction (a solid or
+  // friction moved it).
+  bool updateVelocities(float dt);
   SolidBoundaries boundaries() const;
   // The container's walls as mirror images (ContainerMirror.h); none without wall density.
   ContainerMirror containerMirror() const;
@@ -138,7 +142,9 @@ class PbfSolver {
   // Wrench tracking (WrenchTracking.cpp): what the solids did to the particles, by solid.
   void recordBoundaryDensityPush(const SolidBoundaries& solids);
   void applyDeltasRecordingBoundary(const SolidBoundaries& solids);
-  void computeDensityAndVorticity();
+  // density_known: the solve's last lambda pass measured density_ and neighbor_count_ at
+  // these very positions, in this order, so only the vorticity is left to compute.
+  void computeDensityAndVorticity(bool density_known);
   void applyViscosityAndVorticity(float dt);
   void enforceSpeedLimit(float dt, StepStats& stats);
   bool stateIsFinite() const;

@@ -27,14 +27,15 @@ class SkippedStages {
     kNeighborSearch = 1u << 3,            // lists reused within the skin
     kIterationsAfterTolerance = 1u << 4,  // the tolerance was met before max_iterations
     kWrench = 1u << 5,                    // no wrench measured (set by the node)
+    kDensityPass = 1u << 6,               // the solve's last lambda pass measured the density
   };
   void add(Stage stage) { bits_ |= stage; }
   bool has(Stage stage) const { return (bits_ & stage) != 0; }
   // In the order above: "vorticity", "xsph", "scorr", "neighbor_search",
-  // "iterations_after_tolerance", "wrench".
+  // "iterations_after_tolerance", "wrench", "density_pass".
   std::vector<std::string> names() const {
     static const char* const kNames[] = {"vorticity",  "xsph", "scorr", "neighbor_search",
-                                         "iterations_after_tolerance", "wrench"};
+                                         "iterations_after_tolerance", "wrench", "density_pass"};
     std::vector<std::string> out;
     for (std::uint32_t k = 0; k < sizeof(kNames) / sizeof(kNames[0]); ++k)
       if (bits_ & (1u << k)) out.emplace_back(kNames[k]);
