@@ -42,15 +42,13 @@ inline __m256i validLanes(std::size_t e, std::size_t end) {
 
 // One group of up to eight neighbours: their indices and positions (0 in unused lanes).
 struct Group {
-  Group(const NeighborArrays& a, std::size_t e, std::size_t end) : valid(validLanes(e, end)) {
-    index = _mm256_maskload_epi32(reinterpret_cast<const int*>(a.index + e), valid);
-    const __m256i triple = _mm256_add_epi32(index, _mm256_slli_epi32(index, 1));  // 3 j
-    const __m256 mask = _mm256_castsi256_ps(valid);
-    x = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.position, triple, mask, 4);
-    y = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.position + 1, triple, mask, 4);
-    z = _mm256_mask_i32gather_ps(_mm256_setzero_ps(), a.position + 2, triple, mask, 4);
-    this->triple = triple;
-  }
+  Group(const NeighborArrays& a, std::size_t e, std::size_t end)
+      : valid(validLanes(e, end)),
+        index(_mm256_maskload_epi32(reinterpret_cast<const int*>(a.index + e), valid)),
+        triple(_mm256_add_epi32(index, _mm256_slli_epi32(index, 1))),  // 3 j: j's x (j < 2^31 / 3)
+        x(gatherPacked(a.position, 0)),
+        y(gatherPacked(a.position, 1)),
+        z(gatherPacked(a.position, 2)) {}
   __m256 validMask() const { return _mm256_castsi256_ps(valid); }
   // A per-particle float array at these neighbours (`fill` in unused lanes).
   __m256 gather(const float* values, float fill = 0.0f) const {
