@@ -211,6 +211,9 @@ LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k,
                                 const Reflection* r, int count, float* pair_gradient,
                                 float* image_gradient) {
   if (count == 1) return lambdaSumsWithImage(a, k, i, r[0], pair_gradient, image_gradient);
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideLambdaSumsWithImages(a, k, i, r, count, pair_gradient);
+#endif
   // Two or three walls (edges, corners: few particles): the same, scalar over the reflections.
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
@@ -286,6 +289,9 @@ LambdaSums imageLambdaSums(const NeighborArrays& a, const PairConstants& k, std:
 
 VectorSum imageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                          const Reflection& r, const float* lambda) {
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideImageDeltaSums(a, k, i, r, lambda);
+#endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];

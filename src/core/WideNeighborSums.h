@@ -260,6 +260,72 @@ inline VectorSum wideDeltaSumsWithImage(const NeighborArrays& a, std::size_t i, 
   return {laneSum(sx), laneSum(sy), laneSum(sz)};
 }
 
+// lambdaSumsWithImages of NeighborSums.cpp for two or three reflections (a particle at an
+// edge or a corner of the container): the direct pair and each image of j, grad_j C_i summed
+// over them before squaring. Only the direct pairs' factors are cached (the delta-p pass
+// recomputes the images' for these few particles).
+inline LambdaSums wideLambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k,
+                                           std::size_t i, const Reflection* r, int count,
+                                           float* pair_gradient) {
+  const WideConstants wk(k);
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
+  const __m256 xi = splat(pxi), yi = splat(pyi), zi = splat(pzi);
+  __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
+  int coincident = 0;
+  std::uint32_t within = 0;
+  for (std::size_t e = begin; e < end; e += kWidth) {
+    const Group n(a, e, end);
+    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
+    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
+    const SpikyTerms t(r2, n.validMask(), wk);
+    _mm256_maskstore_ps(pair_gradient + e, n.valid, t.g);
+    coincident += laneCount(_mm256_andnot_ps(t.directed, n.validMask()));
+    within += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, wk.h2, _CMP_LT_OQ), n.validMask()));
+    __m256 cubes = t.cube();
+    __m256 vx = _mm256_mul_ps(t.g, dx), vy = _mm256_mul_ps(t.g, dy), vz = _mm256_mul_ps(t.g, dz);
+    gx = _mm256_add_ps(gx, vx), gy = _mm256_add_ps(gy, vy), gz = _mm256_add_ps(gz, vz);
+    for (int q = 0; q < count; ++q) {
+      const WideImageOffset o(r[q], pxi, pyi, pzi);
+      const __m256 ex = o.dx(n.x, n.y, n.z), ey = o.dy(n.x, n.y, n.z), ez = o.dz(n.x, n.y, n.z);
+      const __m256 s2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
+      const SpikyTerms s(s2, n.validMask(), wk);
+      cubes = _mm256_add_ps(cubes, _mm256_and_ps(s.cube(), s.directed));  // as the scalar loop
+      gx = _mm256_fmadd_ps(s.g, ex, gx), gy = _mm256_fmadd_ps(s.g, ey, gy), gz = _mm256_fmadd_ps(s.g, ez, gz);
+      // R x_i - x_j (see lambdaSumsWithImage in NeighborSums.cpp)
+      vx = _mm256_fmadd_ps(s.g, _mm256_sub_ps(_mm256_sub_ps(xi, o.dx(xi, yi, zi)), n.x), vx);
+      vy = _mm256_fmadd_ps(s.g, _mm256_sub_ps(_mm256_sub_ps(yi, o.dy(xi, yi, zi)), n.y), vy);
+      vz = _mm256_fmadd_ps(s.g, _mm256_sub_ps(_mm256_sub_ps(zi, o.dz(xi, yi, zi)), n.z), vz);
+    }
+    rho = _mm256_fmadd_ps(wk.density, cubes, rho);
+    grad2 = _mm256_fmadd_ps(vz, vz, _mm256_fmadd_ps(vy, vy, _mm256_fmadd_ps(vx, vx, grad2)));
+  }
+  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident, within};
+}
+
+// imageDeltaSums of NeighborSums.cpp: sum_j (lambda_i + lambda_j) grad W(x_i - image_j) under
+// one reflection, gradients recomputed (particles at edges and corners).
+inline VectorSum wideImageDeltaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
+                                    const Reflection& r, const float* lambda) {
+  const WideConstants wk(k);
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
+  const WideImageOffset o(r, pxi, pyi, pzi);
+  const __m256 li = splat(lambda[i]);
+  __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
+  for (std::size_t e = begin; e < end; e += kWidth) {
+    const Group n(a, e, end);
+    const __m256 ex = o.dx(n.x, n.y, n.z), ey = o.dy(n.x, n.y, n.z), ez = o.dz(n.x, n.y, n.z);
+    const __m256 s2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
+    const SpikyTerms s(s2, n.validMask(), wk);
+    const __m256 g = _mm256_mul_ps(_mm256_add_ps(li, n.gather(lambda)), s.g);
+    sx = _mm256_fmadd_ps(g, ex, sx);
+    sy = _mm256_fmadd_ps(g, ey, sy);
+    sz = _mm256_fmadd_ps(g, ez, sz);
+  }
+  return {laneSum(sx), laneSum(sy), laneSum(sz)};
+}
+
 }  // namespace
 }  // namespace PBF_NEIGHBOR_SUMS_NS
 }  // namespace pbf

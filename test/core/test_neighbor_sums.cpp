@@ -245,3 +245,104 @@ TEST(NeighborSums, ANaNNeighbourMakesTheDensityNaN) {
     }
   });
 }
+
+namespace {
+
+// A mirror across the plane x_axis = 0: image of x has that coordinate negated.
+pbf::Reflection axisMirror(int axis) {
+  pbf::Reflection r{{1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 0, 0}, 1 << (2 * axis)};
+  r.m[4 * axis] = -1;
+  return r;
+}
+
+// The product of two mirrors (the image across an edge's two walls).
+pbf::Reflection bothMirrors(int a, int b) {
+  pbf::Reflection r = axisMirror(a);
+  r.m[4 * b] = -1;
+  r.walls |= 1 << (2 * b);
+  return r;
+}
+
+Vec image(const pbf::Reflection& r, const Vec& x) {
+  return {r.m[0] * x.x + r.m[1] * x.y + r.m[2] * x.z + r.b[0], r.m[3] * x.x + r.m[4] * x.y + r.m[5] * x.z + r.b[1],
+          r.m[6] * x.x + r.m[7] * x.y + r.m[8] * x.z + r.b[2]};
+}
+
+}  // namespace
+
+// Particles at an edge or a corner (several reflections; the scalar loop's semantics:
+// images beyond h or on top of particle i add nothing), and the images' delta p of one
+// reflection with the gradients recomputed.
+TEST(NeighborSums, EdgesAndCornersAgreeWithTheEquations) {
+  const pbf::PairConstants k = constants();
+  const double rho_scale = k.density * std::pow(kH, 3) * 45, grad_scale = k.spiky * kH * kH * 45;
+  const std::vector<pbf::Reflection> edge = {axisMirror(0), axisMirror(2), bothMirrors(0, 2)};
+  struct Build {
+    decltype(&pbf::neighbor_sums_base::lambdaSumsWithImages) lambda_images;
+    decltype(&pbf::neighbor_sums_base::imageDeltaSums) image_delta;
+    const char* name;
+  };
+  std::vector<Build> builds = {{pbf::neighbor_sums_base::lambdaSumsWithImages,
+                                pbf::neighbor_sums_base::imageDeltaSums, "portable"}};
+  if (cpuHasAvx2())
+    builds.push_back({pbf::neighbor_sums_v3::lambdaSumsWithImages, pbf::neighbor_sums_v3::imageDeltaSums, "AVX2"});
+  for (const Build& b : builds) {
+    SCOPED_TRACE(b.name);
+    std::mt19937 rng(13);
+    for (std::size_t count = 0; count <= 45; ++count) {
+      const Cloud c(count, rng);
+      auto at = [&](std::size_t j) { return Vec{c.position[3 * j], c.position[3 * j + 1], c.position[3 * j + 2]}; };
+      const Vec pi = at(0);
+      for (int reflections : {2, 3}) {
+        SCOPED_TRACE(reflections);
+        double rho = 0, sum_grad2 = 0;
+        Vec grad;
+        for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
+          const Vec pj = at(c.index[e]);
+          const Vec d{pi.x - pj.x, pi.y - pj.y, pi.z - pj.z};
+          const double r2 = d.x * d.x + d.y * d.y + d.z * d.z, r = std::sqrt(r2);
+          const double dl = std::max(kH - r, 0.0);
+          rho += k.density * dl * dl * dl;
+          const double g = r2 > k.coincident2 ? k.spiky * dl * dl / r : 0.0;
+          Vec v{g * d.x, g * d.y, g * d.z};
+          grad.x += v.x, grad.y += v.y, grad.z += v.z;
+          for (int q = 0; q < reflections; ++q) {
+            const Vec im = image(edge[q], pj), ri = image(edge[q], pi);
+            const Vec s{pi.x - im.x, pi.y - im.y, pi.z - im.z};
+            const double s2 = s.x * s.x + s.y * s.y + s.z * s.z;
+            if (s2 >= static_cast<double>(k.h2) || s2 <= k.coincident2) continue;
+            const double sl = kH - std::sqrt(s2), gi = k.spiky * sl * sl / std::sqrt(s2);
+            rho += k.density * sl * sl * sl;
+            grad.x += gi * s.x, grad.y += gi * s.y, grad.z += gi * s.z;
+            v.x += gi * (ri.x - pj.x), v.y += gi * (ri.y - pj.y), v.z += gi * (ri.z - pj.z);
+          }
+          sum_grad2 += v.x * v.x + v.y * v.y + v.z * v.z;
+        }
+        std::vector<float> g(c.index.size() + 8, -1.0f), unused(g.size(), -1.0f);
+        const pbf::LambdaSums s = b.lambda_images(c.arrays(), k, 0, edge.data(), reflections, g.data(), unused.data());
+        expectNear(s.rho, rho, rho_scale, "density", count);
+        expectNear(s.gx, grad.x, grad_scale, "gradient x", count);
+        expectNear(s.gy, grad.y, grad_scale, "gradient y", count);
+        expectNear(s.gz, grad.z, grad_scale, "gradient z", count);
+        expectNear(s.sum_grad2, sum_grad2, grad_scale * grad_scale, "sum of squared gradients", count);
+      }
+      // The images' delta p under the edge's double reflection.
+      Vec dp;
+      for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
+        const std::uint32_t j = c.index[e];
+        const Vec im = image(edge[2], at(j));
+        const Vec s{pi.x - im.x, pi.y - im.y, pi.z - im.z};
+        const double s2 = s.x * s.x + s.y * s.y + s.z * s.z, len = std::sqrt(s2);
+        if (s2 <= k.coincident2) continue;
+        const double sl = std::max(kH - len, 0.0);
+        const double f = (static_cast<double>(c.lambda[0]) + c.lambda[j]) * k.spiky * sl * sl / len;
+        dp.x += f * s.x, dp.y += f * s.y, dp.z += f * s.z;
+      }
+      const pbf::VectorSum d = b.image_delta(c.arrays(), k, 0, edge[2], c.lambda.data());
+      const double dp_scale = 2e-6 * grad_scale;
+      expectNear(d.x, dp.x, dp_scale, "image delta p x", count);
+      expectNear(d.y, dp.y, dp_scale, "image delta p y", count);
+      expectNear(d.z, dp.z, dp_scale, "image delta p z", count);
+    }
+  }
+}
