@@ -88,17 +88,36 @@ struct WideConstants {
   __m256 h, h2, poly6, density, spiky, coincident2;
 };
 
-// Kernel terms of one pair distance: (h - r)_+ (0 in unused lanes) and the gradient factor
-// spiky (h - r)_+^2 / r (0 for coincident pairs and unused lanes).
-struct SpikyTerms {
-  SpikyTerms(__m256 r2, __m256 valid, const WideConstants& k) {
+// One group's pairs with particle i: the vectors d = x_i - x_j (or x_i - image of j), r^2,
+// (h - r)_+ (0 in unused lanes), which pairs have a direction (r^2 above coincident2), and
+// the gradient factor g = spiky (h - r)_+^2 / r (grad = g d; 0 for coincident pairs and
+// unused lanes).
+struct Pairs {
+  Pairs(__m256 x, __m256 y, __m256 z, __m256 valid, const WideConstants& k)
+      : dx(x), dy(y), dz(z), r2(_mm256_fmadd_ps(z, z, _mm256_fmadd_ps(y, y, _mm256_mul_ps(x, x)))) {
     const __m256 rinv = inverseLength(r2);
     dl = _mm256_and_ps(_mm256_max_ps(_mm256_setzero_ps(), _mm256_sub_ps(k.h, _mm256_mul_ps(r2, rinv))), valid);
     directed = _mm256_and_ps(_mm256_cmp_ps(r2, k.coincident2, _CMP_GT_OQ), valid);
     g = _mm256_and_ps(_mm256_mul_ps(_mm256_mul_ps(k.spiky, _mm256_mul_ps(dl, dl)), rinv), directed);
   }
   __m256 cube() const { return _mm256_mul_ps(_mm256_mul_ps(dl, dl), dl); }
-  __m256 dl, directed, g;
+  __m256 dx, dy, dz, r2, dl, directed, g;
+};
+
+inline Pairs directPairs(const Group& n, __m256 xi, __m256 yi, __m256 zi, const WideConstants& k) {
+  return Pairs(_mm256_sub_ps(xi, n.x), _mm256_sub_ps(yi, n.y), _mm256_sub_ps(zi, n.z), n.validMask(), k);
+}
+
+// What every lambda sum does with its direct pairs besides summing: cache the gradient
+// factors for the delta-p pass, count the coincident pairs and the neighbours within h.
+struct DirectPairBook {
+  void add(const Group& n, const Pairs& p, const WideConstants& k, float* pair_gradient) {
+    _mm256_maskstore_ps(pair_gradient, n.valid, p.g);
+    coincident += laneCount(_mm256_andnot_ps(p.directed, n.validMask()));
+    within += laneCount(_mm256_and_ps(_mm256_cmp_ps(p.r2, k.h2, _CMP_LT_OQ), n.validMask()));
+  }
+  int coincident = 0;
+  std::uint32_t within = 0;
 };
 
 inline LambdaSums wideLambdaSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
@@ -108,23 +127,18 @@ inline LambdaSums wideLambdaSums(const NeighborArrays& a, const PairConstants& k
   const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
                zi = splat(a.position[3 * i + 2]);
   __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
-  int coincident = 0;
-  std::uint32_t within = 0;
+  DirectPairBook book;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
-    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
-    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-    const SpikyTerms t(r2, n.validMask(), wk);
-    _mm256_maskstore_ps(pair_gradient + e, n.valid, t.g);
-    coincident += laneCount(_mm256_andnot_ps(t.directed, n.validMask()));
-    within += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, wk.h2, _CMP_LT_OQ), n.validMask()));
-    rho = _mm256_fmadd_ps(wk.density, t.cube(), rho);
-    gx = _mm256_fmadd_ps(t.g, dx, gx);
-    gy = _mm256_fmadd_ps(t.g, dy, gy);
-    gz = _mm256_fmadd_ps(t.g, dz, gz);
-    grad2 = _mm256_fmadd_ps(_mm256_mul_ps(t.g, t.g), r2, grad2);
+    const Pairs p = directPairs(n, xi, yi, zi, wk);
+    book.add(n, p, wk, pair_gradient + e);
+    rho = _mm256_fmadd_ps(wk.density, p.cube(), rho);
+    gx = _mm256_fmadd_ps(p.g, p.dx, gx);
+    gy = _mm256_fmadd_ps(p.g, p.dy, gy);
+    gz = _mm256_fmadd_ps(p.g, p.dz, gz);
+    grad2 = _mm256_fmadd_ps(_mm256_mul_ps(p.g, p.g), p.r2, grad2);
   }
-  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident, within};
+  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), book.coincident, book.within};
 }
 
 inline VectorSum wideDeltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
@@ -153,11 +167,9 @@ inline DensitySum wideDensitySums(const NeighborArrays& a, const PairConstants& 
   std::uint32_t count = 0;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
-    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
-    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-    const SpikyTerms t(r2, n.validMask(), wk);
-    rho = _mm256_fmadd_ps(wk.density, t.cube(), rho);
-    count += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, wk.h2, _CMP_LT_OQ), n.validMask()));
+    const Pairs p = directPairs(n, xi, yi, zi, wk);
+    rho = _mm256_fmadd_ps(wk.density, p.cube(), rho);
+    count += laneCount(_mm256_and_ps(_mm256_cmp_ps(p.r2, wk.h2, _CMP_LT_OQ), n.validMask()));
   }
   return {laneSum(rho), count};
 }
@@ -201,6 +213,10 @@ struct WideImageOffset {
   __m256 m[9], bx, by, bz;
 };
 
+inline Pairs imagePairs(const Group& n, const WideImageOffset& o, const WideConstants& k) {
+  return Pairs(o.dx(n.x, n.y, n.z), o.dy(n.x, n.y, n.z), o.dz(n.x, n.y, n.z), n.validMask(), k);
+}
+
 // lambdaSumsWithImage of NeighborSums.cpp (one reflection): see there for the equations.
 inline LambdaSums wideLambdaSumsWithImage(const NeighborArrays& a, const PairConstants& k,
                                           std::size_t i, const Reflection& r, float* pair_gradient,
@@ -213,30 +229,23 @@ inline LambdaSums wideLambdaSumsWithImage(const NeighborArrays& a, const PairCon
   const __m256 rix = _mm256_sub_ps(xi, o.dx(xi, yi, zi)), riy = _mm256_sub_ps(yi, o.dy(xi, yi, zi)),
                riz = _mm256_sub_ps(zi, o.dz(xi, yi, zi));  // R x_i
   __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
-  int coincident = 0;
-  std::uint32_t within = 0;
+  DirectPairBook book;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
-    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
-    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-    const SpikyTerms t(r2, n.validMask(), wk);
-    _mm256_maskstore_ps(pair_gradient + e, n.valid, t.g);
-    coincident += laneCount(_mm256_andnot_ps(t.directed, n.validMask()));
-    within += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, wk.h2, _CMP_LT_OQ), n.validMask()));
-    const __m256 ex = o.dx(n.x, n.y, n.z), ey = o.dy(n.x, n.y, n.z), ez = o.dz(n.x, n.y, n.z);
-    const __m256 s2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
-    const SpikyTerms s(s2, n.validMask(), wk);
+    const Pairs p = directPairs(n, xi, yi, zi, wk);
+    book.add(n, p, wk, pair_gradient + e);
+    const Pairs s = imagePairs(n, o, wk);
     _mm256_maskstore_ps(image_gradient + e, n.valid, s.g);
-    rho = _mm256_fmadd_ps(wk.density, _mm256_add_ps(t.cube(), s.cube()), rho);
-    gx = _mm256_fmadd_ps(s.g, ex, _mm256_fmadd_ps(t.g, dx, gx));
-    gy = _mm256_fmadd_ps(s.g, ey, _mm256_fmadd_ps(t.g, dy, gy));
-    gz = _mm256_fmadd_ps(s.g, ez, _mm256_fmadd_ps(t.g, dz, gz));
-    const __m256 vx = _mm256_fmadd_ps(s.g, _mm256_sub_ps(rix, n.x), _mm256_mul_ps(t.g, dx));
-    const __m256 vy = _mm256_fmadd_ps(s.g, _mm256_sub_ps(riy, n.y), _mm256_mul_ps(t.g, dy));
-    const __m256 vz = _mm256_fmadd_ps(s.g, _mm256_sub_ps(riz, n.z), _mm256_mul_ps(t.g, dz));
+    rho = _mm256_fmadd_ps(wk.density, _mm256_add_ps(p.cube(), s.cube()), rho);
+    gx = _mm256_fmadd_ps(s.g, s.dx, _mm256_fmadd_ps(p.g, p.dx, gx));
+    gy = _mm256_fmadd_ps(s.g, s.dy, _mm256_fmadd_ps(p.g, p.dy, gy));
+    gz = _mm256_fmadd_ps(s.g, s.dz, _mm256_fmadd_ps(p.g, p.dz, gz));
+    const __m256 vx = _mm256_fmadd_ps(s.g, _mm256_sub_ps(rix, n.x), _mm256_mul_ps(p.g, p.dx));
+    const __m256 vy = _mm256_fmadd_ps(s.g, _mm256_sub_ps(riy, n.y), _mm256_mul_ps(p.g, p.dy));
+    const __m256 vz = _mm256_fmadd_ps(s.g, _mm256_sub_ps(riz, n.z), _mm256_mul_ps(p.g, p.dz));
     grad2 = _mm256_fmadd_ps(vz, vz, _mm256_fmadd_ps(vy, vy, _mm256_fmadd_ps(vx, vx, grad2)));
   }
-  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident, within};
+  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), book.coincident, book.within};
 }
 
 // deltaSumsWithImage of NeighborSums.cpp.
@@ -272,26 +281,19 @@ inline LambdaSums wideLambdaSumsWithImages(const NeighborArrays& a, const PairCo
   const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
   const __m256 xi = splat(pxi), yi = splat(pyi), zi = splat(pzi);
   __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
-  int coincident = 0;
-  std::uint32_t within = 0;
+  DirectPairBook book;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
-    const __m256 dx = _mm256_sub_ps(xi, n.x), dy = _mm256_sub_ps(yi, n.y), dz = _mm256_sub_ps(zi, n.z);
-    const __m256 r2 = _mm256_fmadd_ps(dz, dz, _mm256_fmadd_ps(dy, dy, _mm256_mul_ps(dx, dx)));
-    const SpikyTerms t(r2, n.validMask(), wk);
-    _mm256_maskstore_ps(pair_gradient + e, n.valid, t.g);
-    coincident += laneCount(_mm256_andnot_ps(t.directed, n.validMask()));
-    within += laneCount(_mm256_and_ps(_mm256_cmp_ps(r2, wk.h2, _CMP_LT_OQ), n.validMask()));
-    __m256 cubes = t.cube();
-    __m256 vx = _mm256_mul_ps(t.g, dx), vy = _mm256_mul_ps(t.g, dy), vz = _mm256_mul_ps(t.g, dz);
+    const Pairs p = directPairs(n, xi, yi, zi, wk);
+    book.add(n, p, wk, pair_gradient + e);
+    __m256 cubes = p.cube();
+    __m256 vx = _mm256_mul_ps(p.g, p.dx), vy = _mm256_mul_ps(p.g, p.dy), vz = _mm256_mul_ps(p.g, p.dz);
     gx = _mm256_add_ps(gx, vx), gy = _mm256_add_ps(gy, vy), gz = _mm256_add_ps(gz, vz);
     for (int q = 0; q < count; ++q) {
       const WideImageOffset o(r[q], pxi, pyi, pzi);
-      const __m256 ex = o.dx(n.x, n.y, n.z), ey = o.dy(n.x, n.y, n.z), ez = o.dz(n.x, n.y, n.z);
-      const __m256 s2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
-      const SpikyTerms s(s2, n.validMask(), wk);
+      const Pairs s = imagePairs(n, o, wk);
       cubes = _mm256_add_ps(cubes, _mm256_and_ps(s.cube(), s.directed));  // as the scalar loop
-      gx = _mm256_fmadd_ps(s.g, ex, gx), gy = _mm256_fmadd_ps(s.g, ey, gy), gz = _mm256_fmadd_ps(s.g, ez, gz);
+      gx = _mm256_fmadd_ps(s.g, s.dx, gx), gy = _mm256_fmadd_ps(s.g, s.dy, gy), gz = _mm256_fmadd_ps(s.g, s.dz, gz);
       // R x_i - x_j (see lambdaSumsWithImage in NeighborSums.cpp)
       vx = _mm256_fmadd_ps(s.g, _mm256_sub_ps(_mm256_sub_ps(xi, o.dx(xi, yi, zi)), n.x), vx);
       vy = _mm256_fmadd_ps(s.g, _mm256_sub_ps(_mm256_sub_ps(yi, o.dy(xi, yi, zi)), n.y), vy);
@@ -300,7 +302,7 @@ inline LambdaSums wideLambdaSumsWithImages(const NeighborArrays& a, const PairCo
     rho = _mm256_fmadd_ps(wk.density, cubes, rho);
     grad2 = _mm256_fmadd_ps(vz, vz, _mm256_fmadd_ps(vy, vy, _mm256_fmadd_ps(vx, vx, grad2)));
   }
-  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), coincident, within};
+  return {laneSum(rho), laneSum(gx), laneSum(gy), laneSum(gz), laneSum(grad2), book.coincident, book.within};
 }
 
 // imageDeltaSums of NeighborSums.cpp: sum_j (lambda_i + lambda_j) grad W(x_i - image_j) under
@@ -315,13 +317,11 @@ inline VectorSum wideImageDeltaSums(const NeighborArrays& a, const PairConstants
   __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
-    const __m256 ex = o.dx(n.x, n.y, n.z), ey = o.dy(n.x, n.y, n.z), ez = o.dz(n.x, n.y, n.z);
-    const __m256 s2 = _mm256_fmadd_ps(ez, ez, _mm256_fmadd_ps(ey, ey, _mm256_mul_ps(ex, ex)));
-    const SpikyTerms s(s2, n.validMask(), wk);
+    const Pairs s = imagePairs(n, o, wk);
     const __m256 g = _mm256_mul_ps(_mm256_add_ps(li, n.gather(lambda)), s.g);
-    sx = _mm256_fmadd_ps(g, ex, sx);
-    sy = _mm256_fmadd_ps(g, ey, sy);
-    sz = _mm256_fmadd_ps(g, ez, sz);
+    sx = _mm256_fmadd_ps(g, s.dx, sx);
+    sy = _mm256_fmadd_ps(g, s.dy, sy);
+    sz = _mm256_fmadd_ps(g, s.dz, sz);
   }
   return {laneSum(sx), laneSum(sy), laneSum(sz)};
 }
