@@ -67,6 +67,19 @@ struct Vec {
   double x = 0, y = 0, z = 0;
 };
 
+// One pair in double: d = x_i - x_j, r^2, (h - r)_+ and the Spiky gradient factor g
+// (grad = g d; 0 for a coincident pair).
+struct ReferencePair {
+  ReferencePair(const Vec& pi, const Vec& pj, const pbf::PairConstants& k)
+      : d{pi.x - pj.x, pi.y - pj.y, pi.z - pj.z}, r2(d.x * d.x + d.y * d.y + d.z * d.z) {
+    const double r = std::sqrt(r2);
+    dl = std::max(k.h - r, 0.0);
+    g = r2 > k.coincident2 ? k.spiky * dl * dl / r : 0.0;
+  }
+  Vec d;
+  double r2, dl, g;
+};
+
 // Reference lambda sums of particle 0 in double, with the images of its neighbours if
 // `mirror` (one reflection); gradient factors per list entry as the passes cache them.
 struct ReferenceLambda {
@@ -76,14 +89,12 @@ struct ReferenceLambda {
     const Vec pi = at(0);
     for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
       const Vec pj = at(c.index[e]);
-      const Vec d{pi.x - pj.x, pi.y - pj.y, pi.z - pj.z};
-      const double r2 = d.x * d.x + d.y * d.y + d.z * d.z, r = std::sqrt(r2);
-      const double dl = std::max(h - r, 0.0);
-      rho += k.density * dl * dl * dl;
-      within += r2 < static_cast<double>(k.h2) ? 1 : 0;
-      double g = 0.0;
-      if (r2 > k.coincident2) g = k.spiky * dl * dl / r;
-      else ++coincident;
+      const ReferencePair p(pi, pj, k);
+      const Vec& d = p.d;
+      const double g = p.g;
+      rho += k.density * p.dl * p.dl * p.dl;
+      within += p.r2 < static_cast<double>(k.h2) ? 1 : 0;
+      coincident += p.r2 > k.coincident2 ? 0 : 1;
       gradient.push_back(g);
       Vec v{g * d.x, g * d.y, g * d.z};
       double gi = 0.0;
@@ -299,12 +310,9 @@ TEST(NeighborSums, EdgesAndCornersAgreeWithTheEquations) {
         Vec grad;
         for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
           const Vec pj = at(c.index[e]);
-          const Vec d{pi.x - pj.x, pi.y - pj.y, pi.z - pj.z};
-          const double r2 = d.x * d.x + d.y * d.y + d.z * d.z, r = std::sqrt(r2);
-          const double dl = std::max(kH - r, 0.0);
-          rho += k.density * dl * dl * dl;
-          const double g = r2 > k.coincident2 ? k.spiky * dl * dl / r : 0.0;
-          Vec v{g * d.x, g * d.y, g * d.z};
+          const ReferencePair p(pi, pj, k);
+          rho += k.density * p.dl * p.dl * p.dl;
+          Vec v{p.g * p.d.x, p.g * p.d.y, p.g * p.d.z};
           grad.x += v.x, grad.y += v.y, grad.z += v.z;
           for (int q = 0; q < reflections; ++q) {
             const Vec im = image(edge[q], pj), ri = image(edge[q], pi);
