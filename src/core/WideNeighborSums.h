@@ -1,7 +1,7 @@
 #pragma once
 // The hot neighbour sums of NeighborSums.cpp written out for AVX2 + FMA, eight neighbours at
 // a time. Included only by the x86-64-v3 build of NeighborSums.cpp (the build's target keeps
-// the portable loops there, which are the reference: test_core_neighbor_grid compares both).
+// the portable loops there, which are the reference: test_core_neighbor_sums checks both).
 //
 // Why by hand: GCC's `omp simd` reductions keep their per-lane sums in a stack array, so
 // every pair's additions wait on a store and a load; each list ends in a scalar loop for
