@@ -17,12 +17,18 @@ namespace {
 
 using Points = std::vector<Eigen::Vector3f>;
 
-// SPH density of the particle at p from the lattice x (brute force) plus what the solids lend.
-double densityAt(const Eigen::Vector3f& p, const Points& x, const pbf::SolverParams& params,
-                 const pbf::SolidBoundaries& solids) {
+// SPH density at p of the particles x (brute force, p's own particle included if in x).
+double fluidDensityAt(const Eigen::Vector3f& p, const Points& x, const pbf::SolverParams& params) {
   const pbf::Kernels k(params.supportRadius());
   double rho = 0.0;
   for (const auto& q : x) rho += params.densityMass() * k.spiky((p - q).norm());
+  return rho;
+}
+
+// SPH density of the particle at p from the lattice x (brute force) plus what the solids lend.
+double densityAt(const Eigen::Vector3f& p, const Points& x, const pbf::SolverParams& params,
+                 const pbf::SolidBoundaries& solids) {
+  const double rho = fluidDensityAt(p, x, params);
   float fraction = 0.0f;
   Eigen::Vector3f gradient = Eigen::Vector3f::Zero();
   solids.density(p, fraction, gradient);
@@ -278,15 +284,13 @@ TEST(Calibration, ReusedNeighbourListsNeverMissAPairWithinH) {
     v.emplace_back(0.1f * Eigen::Vector3f(u(rng), u(rng), u(rng)));
   }
   solver.setParticles(x, v);
-  const pbf::Kernels k(p.supportRadius());
   int reused = 0;
   for (int s = 0; s < 20; ++s) {
     const pbf::StepStats st = solver.stepWith(2e-3f);
     reused += st.neighbor_lists_reused ? 1 : 0;
     const Points& pos = solver.positions();
     for (std::size_t i = 0; i < pos.size(); ++i) {
-      double rho = 0.0;
-      for (const auto& q : pos) rho += p.densityMass() * k.spiky((pos[i] - q).norm());
+      const double rho = fluidDensityAt(pos[i], pos, p);
       ASSERT_NEAR(solver.densities()[i], rho, 1e-4 * rho) << "step " << s << ", particle " << i;
     }
   }
@@ -318,13 +322,9 @@ TEST(Calibration, DensitiesKeptFromTheSolveAreTheFinalPositionsDensities) {
     kept += st.skipped_stages.has(pbf::SkippedStages::kDensityPass) ? 1 : 0;
     const Points& pos = solver.positions();
     for (std::size_t i = 0; i < pos.size(); ++i) {
-      double rho = 0.0;
+      const double rho = fluidDensityAt(pos[i], pos, p);
       int within = 0;
-      for (std::size_t j = 0; j < pos.size(); ++j) {
-        const float r = (pos[i] - pos[j]).norm();
-        rho += p.densityMass() * k.spiky(r);
-        within += j != i && r < k.h ? 1 : 0;
-      }
+      for (std::size_t j = 0; j < pos.size(); ++j) within += j != i && (pos[i] - pos[j]).norm() < k.h ? 1 : 0;
       ASSERT_NEAR(solver.densities()[i], rho, 1e-4 * rho) << "step " << s << ", particle " << i;
       ASSERT_EQ(solver.neighborCounts()[i], within) << "step " << s << ", particle " << i;
     }
