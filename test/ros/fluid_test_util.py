@@ -3,6 +3,7 @@ import struct
 import threading
 import time
 
+import rosgraph
 import rospy
 from pbf_ros.msg import SimulationStats
 from sensor_msgs.msg import PointCloud2
@@ -71,6 +72,24 @@ class Latest:
 
     def close(self):
         self.sub.unregister()
+
+
+def wait_connected(subscriber, node=NODE, timeout=10.0):
+    """Waits until `subscriber` has a connection to `node`'s publisher of its topic. A
+    subscription is wired up some time after it is made: a line the node logs to /rosout
+    right after (e.g. on a ~reset the test calls next) would otherwise be missed."""
+    master = rosgraph.Master(rospy.get_name())
+    deadline = time.time() + timeout
+    while True:
+        try:  # the node may not be up yet
+            if subscriber.impl.has_connection(master.lookupNode(node)):
+                return
+        except rosgraph.MasterError:
+            pass
+        if time.time() > deadline:
+            raise AssertionError('%s is not connected to %s within %.1f s' %
+                                 (subscriber.resolved_name, node, timeout))
+        time.sleep(0.02)
 
 
 def stats_listener():

@@ -13,7 +13,7 @@ from rosgraph_msgs.msg import Log
 from std_srvs.srv import SetBool, Trigger
 from tf2_msgs.msg import TFMessage
 
-from fluid_test_util import NODE, stats_listener
+from fluid_test_util import NODE, stats_listener, wait_connected
 
 BODIES = ('raft', 'stone', 'buoy')
 
@@ -27,6 +27,9 @@ class TfRecorder:
         self.logs = []
         self.tf = rospy.Subscriber('/tf', TFMessage, self._tf, queue_size=1000)
         self.rosout = rospy.Subscriber('/rosout', Log, self._log, queue_size=1000)
+        # Nothing the node sends from here on is missed (it may still be starting).
+        wait_connected(self.tf, timeout=30.0)
+        wait_connected(self.rosout, timeout=30.0)
 
     def _tf(self, msg):
         if msg._connection_header.get('callerid') != NODE:

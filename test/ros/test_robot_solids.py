@@ -20,7 +20,8 @@ from rosgraph_msgs.msg import Log
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker, MarkerArray
 
-from fluid_test_util import NODE, Latest, cloud_listener, cloud_points, stats_listener
+from fluid_test_util import (NODE, Latest, cloud_listener, cloud_points, stats_listener,
+                             wait_connected)
 
 # The probe link in fluid_domain (base_link at its origin): 1.75 spacings of water under and
 # over it. (At 0.12 only one particle layer was left under it, which cannot carry the
@@ -47,6 +48,7 @@ class RosoutRecorder:
         self.lock = threading.Lock()
         self.lines = []
         self.sub = rospy.Subscriber('/rosout', Log, self.callback, queue_size=100)
+        wait_connected(self.sub)  # the node's lines on the ~reset that follows
 
     def callback(self, msg):
         with self.lock:
