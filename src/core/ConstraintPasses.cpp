@@ -8,6 +8,7 @@
 #include "ContainerMirror.h"
 #include "DeterministicSum.h"
 #include "NeighborSums.h"
+#include "PackedSlots.h"
 #include "PairGeometry.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
@@ -74,7 +75,8 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   const float self_density = mass * k.spiky(0.0f);
   const bool unilateral = params_.unilateral_constraint;
   const float eps = params_.cfmEpsilon();
-  const NeighborArrays arrays{P, off, nbr};
+  const NeighborArrays arrays{P, off, nbr, packed_->packPositions(predicted_)};
+  float* const lambda_slots = packed_->lambdaSlots();  // (x*, lambda) for the delta-p pass
   const PairConstants pc{k.h, k.h2, 0.0f, mass * k.spiky_coef,
                          grad_scale * k.spiky_grad_coef, kCoincident * k.h2};
   const bool walls = params_.wall_density;
@@ -139,25 +141,28 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       wall_gradient_[i] = gw;  // the delta-p pass sees the same position
     }
     density_[i] = rho;
-    if (pass == LambdaPass::kWarmStart) {  // lambda_sum_ holds the warm start (<= 0)
-      lambda_[i] = lambda_sum_[i];
-      continue;
+    float li = lambda_sum_[i];  // the warm start (<= 0), which lambda_sum_ holds
+    if (pass == LambdaPass::kNewton) {
+      float c = rho * inv_rho0 - 1.0f;
+      // Projected, an expanded particle's negative c may take back its push (below).
+      if (unilateral && !projected) c = std::max(c, 0.0f);
+      const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
+      const float step = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
+      li = step;
+      if (projected) {
+        // The step's summed multiplier stays <= 0: push, or take a push back (relaxed).
+        const float before = lambda_sum_[i];
+        const float relaxed = step > 0.0f ? kReleaseRelaxation * step : step;
+        li = std::min(before + relaxed, 0.0f) - before;
+        // What is left to correct: the compression, or the expansion that a push caused.
+        complementarity_residual_[i] = c > 0.0f ? c : std::min(-c, -before * denom);
+      }
     }
-    float c = rho * inv_rho0 - 1.0f;
-    // Projected, an expanded particle's negative c may take back its push (below).
-    if (unilateral && !projected) c = std::max(c, 0.0f);
-    const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
-    const float step = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
-    if (!projected) {
-      lambda_[i] = step;
-      continue;
+    lambda_[i] = li;
+    if (lambda_slots != nullptr) {
+      float* slot = lambda_slots + 4 * i;
+      slot[0] = P[3 * i], slot[1] = P[3 * i + 1], slot[2] = P[3 * i + 2], slot[3] = li;
     }
-    // The step's summed multiplier stays <= 0: push, or take a push back (relaxed).
-    const float before = lambda_sum_[i];
-    const float relaxed = step > 0.0f ? kReleaseRelaxation * step : step;
-    lambda_[i] = std::min(before + relaxed, 0.0f) - before;
-    // What is left to correct: the compression, or the expansion that a push caused.
-    complementarity_residual_[i] = c > 0.0f ? c : std::min(-c, -before * denom);
   }
   if (projected && pass == LambdaPass::kNewton) {
     avg_error = static_cast<float>(
@@ -258,7 +263,7 @@ void PbfSolver::correctPositions(LambdaPass pass) {
   const bool sum_lambda = pass == LambdaPass::kNewton;  // the warm start is already summed
   if (scorr.on) computeScorrScales(scorr);
   const float* S = scorr.on ? scorr_scale_.data() : nullptr;
-  const NeighborArrays arrays{P, off, nbr};
+  const NeighborArrays arrays{P, off, nbr, packed_->lambdaSlots()};  // filled by the lambda pass
   const bool walls = params_.wall_density;
   const ContainerMirror images = containerMirror();
   const PairConstants image_pc{k.h, k.h2, 0.0f, 0.0f, grad_scale * k.spiky_grad_coef, tiny2};

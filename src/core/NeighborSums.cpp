@@ -116,9 +116,11 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
 }
 
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
-                   const float* velocity, const float* density) {
+                   const float* velocity, const float* density, const float* velocity_slots) {
 #if PBF_WIDE_NEIGHBOR_SUMS
-  return wideXsphSums(a, k, i, velocity, density);
+  return wideXsphSums(a, k, i, velocity, density, velocity_slots);
+#else
+  (void)velocity_slots;  // the portable loop gathers
 #endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
@@ -364,6 +366,8 @@ DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std
   }
   return {rho, count};
 }
+
+bool readsPacked() { return PBF_WIDE_NEIGHBOR_SUMS != 0; }
 
 }  // namespace PBF_NEIGHBOR_SUMS_NS
 }  // namespace pbf

@@ -18,6 +18,12 @@ struct NeighborArrays {
   const float* position;       // x,y,z per particle
   const std::uint32_t* offset;  // n + 1 entries
   const std::uint32_t* index;
+  // Optional: the same positions in 16-byte slots x, y, z, w (PackedSlots.h), with w
+  // the particle's multiplier lambda for the delta-p sums (deltaSums, deltaSumsWithImage,
+  // imageDeltaSums: their `lambda` array is then not read) and unused by the others. The
+  // x86-64-v3 build loads neighbours from these slots instead of gathering each
+  // coordinate; the portable build ignores them.
+  const float* packed = nullptr;
 };
 
 // Kernel constants of one pass, premultiplied by the mass / volume factors it needs.
@@ -58,9 +64,11 @@ struct DensitySum {
 DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i);
 
 // XSPH sum_j (m / rho_j) W_ij (v_j - v_i) of particle i (eq 10); `velocity` packed like
-// positions. k.poly6 must be the bare mass times the Poly6 coefficient.
+// positions. k.poly6 must be the bare mass times the Poly6 coefficient. `velocity_slots`
+// (optional, with a.packed): the same velocities in 16-byte slots with the density in w,
+// which the x86-64-v3 build then loads instead of gathering.
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
-                   const float* velocity, const float* density);
+                   const float* velocity, const float* density, const float* velocity_slots = nullptr);
 
 // A mirror image map x -> m x + b (row-major 3x3, world frame) across one, two or three
 // container walls (ContainerMirror.h); `walls` has bit f set for each face f reflected across.
@@ -105,6 +113,9 @@ DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std
 // Which build of the kernels runs: "x86-64-v3" or "build target".
 const char* neighborSumsVariant();
 
+// Whether the running build reads NeighborArrays::packed (the caller need not fill it if not).
+bool neighborSumsReadPacked();
+
 // The two builds (NeighborSums.cpp compiled twice); callers use the functions above.
 #define PBF_DECLARE_NEIGHBOR_SUMS(ns)                                                          \
   namespace ns {                                                                              \
@@ -112,7 +123,7 @@ const char* neighborSumsVariant();
   VectorSum deltaSums(const NeighborArrays&, std::size_t, const float*, const float*);        \
   DensitySum densitySums(const NeighborArrays&, const PairConstants&, std::size_t);           \
   VectorSum xsphSums(const NeighborArrays&, const PairConstants&, std::size_t, const float*,   \
-                     const float*);                                                           \
+                     const float*, const float*);                                             \
   LambdaSums lambdaSumsWithImages(const NeighborArrays&, const PairConstants&, std::size_t,    \
                                   const Reflection*, int, float*, float*);                     \
   VectorSum deltaSumsWithImage(const NeighborArrays&, std::size_t, const Reflection&,          \
@@ -123,6 +134,7 @@ const char* neighborSumsVariant();
                            const Reflection&, const float*);                                  \
   DensitySum imageDensitySums(const NeighborArrays&, const PairConstants&, std::size_t,       \
                               const Reflection&);                                             \
+  bool readsPacked();                                                                         \
   }
 PBF_DECLARE_NEIGHBOR_SUMS(neighbor_sums_base)
 PBF_DECLARE_NEIGHBOR_SUMS(neighbor_sums_v3)

@@ -18,6 +18,7 @@ struct NeighborSumsTable {
   decltype(&neighbor_sums_base::imageLambdaSums) image_lambda;
   decltype(&neighbor_sums_base::imageDeltaSums) image_delta;
   decltype(&neighbor_sums_base::imageDensitySums) image_density;
+  decltype(&neighbor_sums_base::readsPacked) reads_packed;
   const char* name;
 };
 
@@ -38,14 +39,16 @@ const NeighborSumsTable& table() {
                                       neighbor_sums_v3::lambdaSumsWithImages,
                                       neighbor_sums_v3::deltaSumsWithImage,
                                       neighbor_sums_v3::imageLambdaSums, neighbor_sums_v3::imageDeltaSums,
-                                      neighbor_sums_v3::imageDensitySums, "x86-64-v3"}
+                                      neighbor_sums_v3::imageDensitySums, neighbor_sums_v3::readsPacked,
+                                      "x86-64-v3"}
                   : NeighborSumsTable{neighbor_sums_base::lambdaSums, neighbor_sums_base::deltaSums,
                                       neighbor_sums_base::densitySums, neighbor_sums_base::xsphSums,
                                       neighbor_sums_base::lambdaSumsWithImages,
                                       neighbor_sums_base::deltaSumsWithImage,
                                       neighbor_sums_base::imageLambdaSums,
                                       neighbor_sums_base::imageDeltaSums,
-                                      neighbor_sums_base::imageDensitySums, "build target"};
+                                      neighbor_sums_base::imageDensitySums,
+                                      neighbor_sums_base::readsPacked, "build target"};
   return t;
 }
 
@@ -66,8 +69,8 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
 }
 
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
-                   const float* velocity, const float* density) {
-  return table().xsph(a, k, i, velocity, density);
+                   const float* velocity, const float* density, const float* velocity_slots) {
+  return table().xsph(a, k, i, velocity, density, velocity_slots);
 }
 
 LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k, std::size_t i,
@@ -98,5 +101,7 @@ DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std
 }
 
 const char* neighborSumsVariant() { return table().name; }
+
+bool neighborSumsReadPacked() { return table().reads_packed(); }
 
 }  // namespace pbf

@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "PackedSlots.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/ChebyshevAcceleration.h"
 #include "pbf_ros/core/LatticeBoundary.h"
@@ -35,7 +36,8 @@ constexpr float kWarmStartFraction = 0.5f;
 PbfSolver::PbfSolver()
     : grid_(std::make_unique<NeighborGrid>()),
       chebyshev_(std::make_unique<ChebyshevAcceleration>()),
-      lattice_(std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius())) {}
+      lattice_(std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius())),
+      packed_(std::make_unique<PackedSlots>()) {}
 PbfSolver::~PbfSolver() = default;
 
 void PbfSolver::setParams(const SolverParams& params) {

@@ -7,6 +7,7 @@
 
 #include "ContainerMirror.h"
 #include "NeighborSums.h"
+#include "PackedSlots.h"
 #include "PairGeometry.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
@@ -108,8 +109,8 @@ void PbfSolver::computeDensityAndVorticity(bool density_known) {
   const SolidBoundaries solids = boundaries();
   const ContainerMirror images = containerMirror();
 
-  const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(),
-                             nbr.data()};
+  const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(), nbr.data(),
+                             density_known ? nullptr : packed_->packPositions(position_)};
   const PairConstants pc{k.h, k.h2, 0.0f, density_mass * k.spiky_coef, 0.0f, 0.0f};
 
   // Density first (vorticity needs every density).
@@ -158,10 +159,12 @@ void PbfSolver::applyViscosityAndVorticity(float dt) {
   const bool vorticity = params_.vorticity_epsilon > 0.0f;
   const float veps = params_.vorticity_epsilon * k.h;  // f = epsilon h (N x omega)
 
-  const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(),
-                             nbr.data()};
+  const bool xsph = c > 0.0f;
+  const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(), nbr.data(),
+                             xsph ? packed_->packPositions(position_) : nullptr};
   const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, 0.0f, 0.0f, 0.0f};
   const float* V = velocity_.empty() ? nullptr : velocity_[0].data();
+  const float* velocity_slots = xsph ? packed_->packVelocities(velocity_, density_) : nullptr;
   if (vorticity) {  // |omega| once per particle, not once per pair
     vorticity_norm_.resize(n);
 #pragma omp parallel for schedule(static)
@@ -171,8 +174,8 @@ void PbfSolver::applyViscosityAndVorticity(float dt) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     Eigen::Vector3f v = velocity_[i];
-    if (c > 0.0f) {  // XSPH (eq 10) with the m_j / rho_j factor
-      const VectorSum s = xsphSums(arrays, pc, i, V, density_.data());
+    if (xsph) {  // XSPH (eq 10) with the m_j / rho_j factor
+      const VectorSum s = xsphSums(arrays, pc, i, V, density_.data(), velocity_slots);
       v += c * Eigen::Vector3f(s.x, s.y, s.z);
     }
     if (vorticity) {

@@ -2,7 +2,9 @@
 // where the CPU has AVX2, the hand-written wide ones (WideNeighborSums.h), each against the
 // equations evaluated in double precision. Lists of every length from 0 to 45 cover each
 // count of neighbours in the last, masked group; they hold pairs beyond h (the lists' skin),
-// a coincident pair, and, in one test, a NaN.
+// a coincident pair, and, in one test, a NaN. The wide build is run with the positions
+// gathered and with them in packed 16-byte slots (NeighborArrays::packed; XSPH's velocity
+// slots).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,8 +54,20 @@ struct Cloud {
     index.assign(3, 0);
     for (std::size_t j = 1; j <= count; ++j) index.push_back(static_cast<std::uint32_t>(j));
   }
-  pbf::NeighborArrays arrays() const { return {position.data(), offset.data(), index.data()}; }
-  std::vector<float> position, velocity, lambda, density;
+  // With `packed`, also the 16-byte slots (x, y, z, lambda) the wide build loads neighbours
+  // from instead of gathering, as the solver's lambda pass fills them for the delta-p pass.
+  // Also the velocity slots (vx, vy, vz, density) for XSPH.
+  pbf::NeighborArrays arrays(bool packed = false) {
+    slots.clear();
+    velocity_slots.clear();
+    for (std::size_t j = 0; j < position.size() / 3; ++j) {
+      slots.insert(slots.end(), {position[3 * j], position[3 * j + 1], position[3 * j + 2], lambda[j]});
+      velocity_slots.insert(velocity_slots.end(),
+                            {velocity[3 * j], velocity[3 * j + 1], velocity[3 * j + 2], density[j]});
+    }
+    return {position.data(), offset.data(), index.data(), packed ? slots.data() : nullptr};
+  }
+  std::vector<float> position, velocity, lambda, density, slots, velocity_slots;
   std::vector<std::uint32_t> offset, index;
 };
 
@@ -156,56 +170,58 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
     SCOPED_TRACE(build);
     std::mt19937 rng(5);
     for (std::size_t count = 0; count <= 45; ++count) {
-      const Cloud c(count, rng);
-      const pbf::NeighborArrays a = c.arrays();
-      for (bool mirror : {false, true}) {
-        SCOPED_TRACE(mirror ? "with the floor's images" : "direct pairs");
-        const ReferenceLambda ref(c, k, mirror);
-        std::vector<float> g(c.index.size() + 8, -1.0f), gi(g.size(), -1.0f);
-        const pbf::Reflection r = floorMirror();
-        const pbf::LambdaSums s = mirror ? lambda_sums_images(a, k, 0, &r, 1, g.data(), gi.data())
-                                         : lambda_sums(a, k, 0, g.data());
-        expectNear(s.rho, ref.rho, rho_scale, "density", count);
-        expectNear(s.gx, ref.grad.x, grad_scale, "gradient x", count);
-        expectNear(s.gy, ref.grad.y, grad_scale, "gradient y", count);
-        expectNear(s.gz, ref.grad.z, grad_scale, "gradient z", count);
-        expectNear(s.sum_grad2, ref.sum_grad2, grad_scale * grad_scale, "sum of squared gradients", count);
-        EXPECT_EQ(s.coincident, ref.coincident) << count;
-        EXPECT_EQ(s.within, ref.within) << count;
-        for (std::size_t e = 0; e < g.size(); ++e) {
-          const bool listed = e >= c.offset[0] && e < c.offset[1];
-          if (!listed) {  // the masked group writes nothing outside the list
-            EXPECT_EQ(g[e], -1.0f) << "entry " << e << " of " << count;
-            if (mirror) {
-              EXPECT_EQ(gi[e], -1.0f) << "entry " << e << " of " << count;
+      Cloud c(count, rng);
+      for (bool packed : {false, true}) {
+        SCOPED_TRACE(packed ? "packed slots" : "gathered positions");
+        const pbf::NeighborArrays a = c.arrays(packed);
+        for (bool mirror : {false, true}) {
+          SCOPED_TRACE(mirror ? "with the floor's images" : "direct pairs");
+          const ReferenceLambda ref(c, k, mirror);
+          std::vector<float> g(c.index.size() + 8, -1.0f), gi(g.size(), -1.0f);
+          const pbf::Reflection r = floorMirror();
+          const pbf::LambdaSums s = mirror ? lambda_sums_images(a, k, 0, &r, 1, g.data(), gi.data())
+                                           : lambda_sums(a, k, 0, g.data());
+          expectNear(s.rho, ref.rho, rho_scale, "density", count);
+          expectNear(s.gx, ref.grad.x, grad_scale, "gradient x", count);
+          expectNear(s.gy, ref.grad.y, grad_scale, "gradient y", count);
+          expectNear(s.gz, ref.grad.z, grad_scale, "gradient z", count);
+          expectNear(s.sum_grad2, ref.sum_grad2, grad_scale * grad_scale, "sum of squared gradients", count);
+          EXPECT_EQ(s.coincident, ref.coincident) << count;
+          EXPECT_EQ(s.within, ref.within) << count;
+          for (std::size_t e = 0; e < g.size(); ++e) {
+            const bool listed = e >= c.offset[0] && e < c.offset[1];
+            if (!listed) {  // the masked group writes nothing outside the list
+              EXPECT_EQ(g[e], -1.0f) << "entry " << e << " of " << count;
+              if (mirror) {
+                EXPECT_EQ(gi[e], -1.0f) << "entry " << e << " of " << count;
+              }
+              continue;
             }
-            continue;
+            const double scale = k.spiky * kH;
+            expectNear(g[e], ref.gradient[e - c.offset[0]], scale, "pair gradient", count);
+            if (mirror) {
+              expectNear(gi[e], ref.image_gradient[e - c.offset[0]], scale, "image gradient", count);
+            }
           }
-          const double scale = k.spiky * kH;
-          expectNear(g[e], ref.gradient[e - c.offset[0]], scale, "pair gradient", count);
-          if (mirror) {
-            expectNear(gi[e], ref.image_gradient[e - c.offset[0]], scale, "image gradient", count);
-          }
-        }
 
-        // delta p: sum_j (lambda_i + lambda_j) g_ij (x_i - x_j) [+ images]
-        Vec dp;
-        for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
-          const std::uint32_t j = c.index[e];
-          const double lij = static_cast<double>(c.lambda[0]) + c.lambda[j];
-          const double dx = c.position[0] - c.position[3 * j], dy = c.position[1] - c.position[3 * j + 1],
-                       dz = c.position[2] - c.position[3 * j + 2];
-          const double gg = lij * g[e], gm = mirror ? lij * gi[e] : 0.0;
-          dp.x += gg * dx + gm * dx;
-          dp.y += gg * dy + gm * dy;
-          dp.z += gg * dz + gm * (c.position[2] + c.position[3 * j + 2]);
-        }
-        const pbf::VectorSum d = mirror ? delta_sums_image(a, 0, r, c.lambda.data(), g.data(), gi.data())
-                                        : delta_sums(a, 0, c.lambda.data(), g.data());
-        const double dp_scale = 2e-6 * k.spiky * kH * kH * 45;
-        expectNear(d.x, dp.x, dp_scale, "delta p x", count);
-        expectNear(d.y, dp.y, dp_scale, "delta p y", count);
-        expectNear(d.z, dp.z, dp_scale, "delta p z", count);
+          // delta p: sum_j (lambda_i + lambda_j) g_ij (x_i - x_j) [+ images]
+          Vec dp;
+          for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
+            const std::uint32_t j = c.index[e];
+            const double lij = static_cast<double>(c.lambda[0]) + c.lambda[j];
+            const double dx = c.position[0] - c.position[3 * j], dy = c.position[1] - c.position[3 * j + 1],
+                         dz = c.position[2] - c.position[3 * j + 2];
+            const double gg = lij * g[e], gm = mirror ? lij * gi[e] : 0.0;
+            dp.x += gg * dx + gm * dx;
+            dp.y += gg * dy + gm * dy;
+            dp.z += gg * dz + gm * (c.position[2] + c.position[3 * j + 2]);
+          }
+          const pbf::VectorSum d = mirror ? delta_sums_image(a, 0, r, c.lambda.data(), g.data(), gi.data())
+                                          : delta_sums(a, 0, c.lambda.data(), g.data());
+          const double dp_scale = 2e-6 * k.spiky * kH * kH * 45;
+          expectNear(d.x, dp.x, dp_scale, "delta p x", count);
+          expectNear(d.y, dp.y, dp_scale, "delta p y", count);
+          expectNear(d.z, dp.z, dp_scale, "delta p z", count);
       }
 
       // Density and neighbour count; XSPH.
@@ -228,11 +244,13 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
       const pbf::DensitySum ds = density_sums(a, k, 0);
       expectNear(ds.rho, rho, rho_scale, "density pass", count);
       EXPECT_EQ(ds.count, within) << count;
-      const pbf::VectorSum xs = xsph_sums(a, k, 0, c.velocity.data(), c.density.data());
+      const pbf::VectorSum xs = xsph_sums(a, k, 0, c.velocity.data(), c.density.data(),
+                                             packed ? c.velocity_slots.data() : nullptr);
       const double xsph_scale = k.poly6 * std::pow(kH, 6) / 900.0 * 2.0 * 45;
       expectNear(xs.x, xsph.x, xsph_scale, "XSPH x", count);
       expectNear(xs.y, xsph.y, xsph_scale, "XSPH y", count);
       expectNear(xs.z, xsph.z, xsph_scale, "XSPH z", count);
+      }
     }
   });
 }
@@ -250,9 +268,11 @@ TEST(NeighborSums, ANaNNeighbourMakesTheDensityNaN) {
       c.position[3 * count + 1] = std::nanf("");
       std::vector<float> g(c.index.size() + 8), gi(g.size());
       const pbf::Reflection r = floorMirror();
-      EXPECT_TRUE(std::isnan(lambda_sums(c.arrays(), k, 0, g.data()).rho)) << count;
-      EXPECT_TRUE(std::isnan(lambda_sums_images(c.arrays(), k, 0, &r, 1, g.data(), gi.data()).rho)) << count;
-      EXPECT_TRUE(std::isnan(density_sums(c.arrays(), k, 0).rho)) << count;
+      for (bool packed : {false, true}) {
+        EXPECT_TRUE(std::isnan(lambda_sums(c.arrays(packed), k, 0, g.data()).rho)) << count;
+        EXPECT_TRUE(std::isnan(lambda_sums_images(c.arrays(packed), k, 0, &r, 1, g.data(), gi.data()).rho)) << count;
+        EXPECT_TRUE(std::isnan(density_sums(c.arrays(packed), k, 0).rho)) << count;
+      }
     }
   });
 }
@@ -301,38 +321,40 @@ TEST(NeighborSums, EdgesAndCornersAgreeWithTheEquations) {
     SCOPED_TRACE(b.name);
     std::mt19937 rng(13);
     for (std::size_t count = 0; count <= 45; ++count) {
-      const Cloud c(count, rng);
-      auto at = [&](std::size_t j) { return Vec{c.position[3 * j], c.position[3 * j + 1], c.position[3 * j + 2]}; };
-      const Vec pi = at(0);
-      for (int reflections : {2, 3}) {
-        SCOPED_TRACE(reflections);
-        double rho = 0, sum_grad2 = 0;
-        Vec grad;
-        for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
-          const Vec pj = at(c.index[e]);
-          const ReferencePair p(pi, pj, k);
-          rho += k.density * p.dl * p.dl * p.dl;
-          Vec v{p.g * p.d.x, p.g * p.d.y, p.g * p.d.z};
-          grad.x += v.x, grad.y += v.y, grad.z += v.z;
-          for (int q = 0; q < reflections; ++q) {
-            const Vec im = image(edge[q], pj), ri = image(edge[q], pi);
-            const Vec s{pi.x - im.x, pi.y - im.y, pi.z - im.z};
-            const double s2 = s.x * s.x + s.y * s.y + s.z * s.z;
-            if (s2 >= static_cast<double>(k.h2) || s2 <= k.coincident2) continue;
-            const double sl = kH - std::sqrt(s2), gi = k.spiky * sl * sl / std::sqrt(s2);
-            rho += k.density * sl * sl * sl;
-            grad.x += gi * s.x, grad.y += gi * s.y, grad.z += gi * s.z;
-            v.x += gi * (ri.x - pj.x), v.y += gi * (ri.y - pj.y), v.z += gi * (ri.z - pj.z);
+      Cloud c(count, rng);
+      for (bool packed : {false, true}) {
+        SCOPED_TRACE(packed ? "packed slots" : "gathered positions");
+        auto at = [&](std::size_t j) { return Vec{c.position[3 * j], c.position[3 * j + 1], c.position[3 * j + 2]}; };
+        const Vec pi = at(0);
+        for (int reflections : {2, 3}) {
+          SCOPED_TRACE(reflections);
+          double rho = 0, sum_grad2 = 0;
+          Vec grad;
+          for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
+            const Vec pj = at(c.index[e]);
+            const ReferencePair p(pi, pj, k);
+            rho += k.density * p.dl * p.dl * p.dl;
+            Vec v{p.g * p.d.x, p.g * p.d.y, p.g * p.d.z};
+            grad.x += v.x, grad.y += v.y, grad.z += v.z;
+            for (int q = 0; q < reflections; ++q) {
+              const Vec im = image(edge[q], pj), ri = image(edge[q], pi);
+              const Vec s{pi.x - im.x, pi.y - im.y, pi.z - im.z};
+              const double s2 = s.x * s.x + s.y * s.y + s.z * s.z;
+              if (s2 >= static_cast<double>(k.h2) || s2 <= k.coincident2) continue;
+              const double sl = kH - std::sqrt(s2), gi = k.spiky * sl * sl / std::sqrt(s2);
+              rho += k.density * sl * sl * sl;
+              grad.x += gi * s.x, grad.y += gi * s.y, grad.z += gi * s.z;
+              v.x += gi * (ri.x - pj.x), v.y += gi * (ri.y - pj.y), v.z += gi * (ri.z - pj.z);
+            }
+            sum_grad2 += v.x * v.x + v.y * v.y + v.z * v.z;
           }
-          sum_grad2 += v.x * v.x + v.y * v.y + v.z * v.z;
-        }
-        std::vector<float> g(c.index.size() + 8, -1.0f), unused(g.size(), -1.0f);
-        const pbf::LambdaSums s = b.lambda_images(c.arrays(), k, 0, edge.data(), reflections, g.data(), unused.data());
-        expectNear(s.rho, rho, rho_scale, "density", count);
-        expectNear(s.gx, grad.x, grad_scale, "gradient x", count);
-        expectNear(s.gy, grad.y, grad_scale, "gradient y", count);
-        expectNear(s.gz, grad.z, grad_scale, "gradient z", count);
-        expectNear(s.sum_grad2, sum_grad2, grad_scale * grad_scale, "sum of squared gradients", count);
+          std::vector<float> g(c.index.size() + 8, -1.0f), unused(g.size(), -1.0f);
+          const pbf::LambdaSums s = b.lambda_images(c.arrays(packed), k, 0, edge.data(), reflections, g.data(), unused.data());
+          expectNear(s.rho, rho, rho_scale, "density", count);
+          expectNear(s.gx, grad.x, grad_scale, "gradient x", count);
+          expectNear(s.gy, grad.y, grad_scale, "gradient y", count);
+          expectNear(s.gz, grad.z, grad_scale, "gradient z", count);
+          expectNear(s.sum_grad2, sum_grad2, grad_scale * grad_scale, "sum of squared gradients", count);
       }
       // The images' delta p under the edge's double reflection.
       Vec dp;
@@ -346,11 +368,12 @@ TEST(NeighborSums, EdgesAndCornersAgreeWithTheEquations) {
         const double f = (static_cast<double>(c.lambda[0]) + c.lambda[j]) * k.spiky * sl * sl / len;
         dp.x += f * s.x, dp.y += f * s.y, dp.z += f * s.z;
       }
-      const pbf::VectorSum d = b.image_delta(c.arrays(), k, 0, edge[2], c.lambda.data());
+      const pbf::VectorSum d = b.image_delta(c.arrays(packed), k, 0, edge[2], c.lambda.data());
       const double dp_scale = 2e-6 * grad_scale;
       expectNear(d.x, dp.x, dp_scale, "image delta p x", count);
       expectNear(d.y, dp.y, dp_scale, "image delta p y", count);
       expectNear(d.z, dp.z, dp_scale, "image delta p z", count);
+      }
     }
   }
 }

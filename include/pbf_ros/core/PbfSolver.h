@@ -27,6 +27,7 @@ class LatticeBoundary;
 class NeighborGrid;
 class SolidBoundaries;
 class ChebyshevAcceleration;
+class PackedSlots;
 
 class PbfSolver {
  public:
@@ -198,6 +199,8 @@ class PbfSolver {
   std::unique_ptr<NeighborGrid> grid_;
   std::unique_ptr<ChebyshevAcceleration> chebyshev_;  // of the constraint iterations
   std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h
+  // Positions (and lambda, velocities) in 16-byte slots for the wide neighbour sums.
+  std::unique_ptr<PackedSlots> packed_;
   Eigen::AlignedBox3f fluid_reach_;  // empty: every obstacle takes part
   bool track_wrenches_ = false;
   WrenchAccumulator wrench_sums_;  // of the attempt in progress
