@@ -222,34 +222,34 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
           expectNear(d.x, dp.x, dp_scale, "delta p x", count);
           expectNear(d.y, dp.y, dp_scale, "delta p y", count);
           expectNear(d.z, dp.z, dp_scale, "delta p z", count);
-      }
+        }
 
-      // Density and neighbour count; XSPH.
-      double rho = 0.0;
-      std::uint32_t within = 0;
-      Vec xsph;
-      for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
-        const std::uint32_t j = c.index[e];
-        const double dx = c.position[0] - c.position[3 * j], dy = c.position[1] - c.position[3 * j + 1],
-                     dz = c.position[2] - c.position[3 * j + 2];
-        const double r2 = dx * dx + dy * dy + dz * dz, dl = std::max(kH - std::sqrt(r2), 0.0);
-        rho += k.density * dl * dl * dl;
-        within += r2 < static_cast<double>(k.h2) ? 1 : 0;
-        const double w = std::max(static_cast<double>(k.h2) - r2, 0.0);
-        const double f = k.poly6 * w * w * w / c.density[j];
-        xsph.x += f * (c.velocity[3 * j] - c.velocity[0]);
-        xsph.y += f * (c.velocity[3 * j + 1] - c.velocity[1]);
-        xsph.z += f * (c.velocity[3 * j + 2] - c.velocity[2]);
-      }
-      const pbf::DensitySum ds = density_sums(a, k, 0);
-      expectNear(ds.rho, rho, rho_scale, "density pass", count);
-      EXPECT_EQ(ds.count, within) << count;
-      const pbf::VectorSum xs = xsph_sums(a, k, 0, c.velocity.data(), c.density.data(),
-                                             packed ? c.velocity_slots.data() : nullptr);
-      const double xsph_scale = k.poly6 * std::pow(kH, 6) / 900.0 * 2.0 * 45;
-      expectNear(xs.x, xsph.x, xsph_scale, "XSPH x", count);
-      expectNear(xs.y, xsph.y, xsph_scale, "XSPH y", count);
-      expectNear(xs.z, xsph.z, xsph_scale, "XSPH z", count);
+        // Density and neighbour count; XSPH.
+        double rho = 0.0;
+        std::uint32_t within = 0;
+        Vec xsph;
+        for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
+          const std::uint32_t j = c.index[e];
+          const double dx = c.position[0] - c.position[3 * j], dy = c.position[1] - c.position[3 * j + 1],
+                       dz = c.position[2] - c.position[3 * j + 2];
+          const double r2 = dx * dx + dy * dy + dz * dz, dl = std::max(kH - std::sqrt(r2), 0.0);
+          rho += k.density * dl * dl * dl;
+          within += r2 < static_cast<double>(k.h2) ? 1 : 0;
+          const double w = std::max(static_cast<double>(k.h2) - r2, 0.0);
+          const double f = k.poly6 * w * w * w / c.density[j];
+          xsph.x += f * (c.velocity[3 * j] - c.velocity[0]);
+          xsph.y += f * (c.velocity[3 * j + 1] - c.velocity[1]);
+          xsph.z += f * (c.velocity[3 * j + 2] - c.velocity[2]);
+        }
+        const pbf::DensitySum ds = density_sums(a, k, 0);
+        expectNear(ds.rho, rho, rho_scale, "density pass", count);
+        EXPECT_EQ(ds.count, within) << count;
+        const pbf::VectorSum xs = xsph_sums(a, k, 0, c.velocity.data(), c.density.data(),
+                                            packed ? c.velocity_slots.data() : nullptr);
+        const double xsph_scale = k.poly6 * std::pow(kH, 6) / 900.0 * 2.0 * 45;
+        expectNear(xs.x, xsph.x, xsph_scale, "XSPH x", count);
+        expectNear(xs.y, xsph.y, xsph_scale, "XSPH y", count);
+        expectNear(xs.z, xsph.z, xsph_scale, "XSPH z", count);
       }
     }
   });
@@ -355,24 +355,24 @@ TEST(NeighborSums, EdgesAndCornersAgreeWithTheEquations) {
           expectNear(s.gy, grad.y, grad_scale, "gradient y", count);
           expectNear(s.gz, grad.z, grad_scale, "gradient z", count);
           expectNear(s.sum_grad2, sum_grad2, grad_scale * grad_scale, "sum of squared gradients", count);
-      }
-      // The images' delta p under the edge's double reflection.
-      Vec dp;
-      for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
-        const std::uint32_t j = c.index[e];
-        const Vec im = image(edge[2], at(j));
-        const Vec s{pi.x - im.x, pi.y - im.y, pi.z - im.z};
-        const double s2 = s.x * s.x + s.y * s.y + s.z * s.z, len = std::sqrt(s2);
-        if (s2 <= k.coincident2) continue;
-        const double sl = std::max(kH - len, 0.0);
-        const double f = (static_cast<double>(c.lambda[0]) + c.lambda[j]) * k.spiky * sl * sl / len;
-        dp.x += f * s.x, dp.y += f * s.y, dp.z += f * s.z;
-      }
-      const pbf::VectorSum d = b.image_delta(c.arrays(packed), k, 0, edge[2], c.lambda.data());
-      const double dp_scale = 2e-6 * grad_scale;
-      expectNear(d.x, dp.x, dp_scale, "image delta p x", count);
-      expectNear(d.y, dp.y, dp_scale, "image delta p y", count);
-      expectNear(d.z, dp.z, dp_scale, "image delta p z", count);
+        }
+        // The images' delta p under the edge's double reflection.
+        Vec dp;
+        for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
+          const std::uint32_t j = c.index[e];
+          const Vec im = image(edge[2], at(j));
+          const Vec s{pi.x - im.x, pi.y - im.y, pi.z - im.z};
+          const double s2 = s.x * s.x + s.y * s.y + s.z * s.z, len = std::sqrt(s2);
+          if (s2 <= k.coincident2) continue;
+          const double sl = std::max(kH - len, 0.0);
+          const double f = (static_cast<double>(c.lambda[0]) + c.lambda[j]) * k.spiky * sl * sl / len;
+          dp.x += f * s.x, dp.y += f * s.y, dp.z += f * s.z;
+        }
+        const pbf::VectorSum d = b.image_delta(c.arrays(packed), k, 0, edge[2], c.lambda.data());
+        const double dp_scale = 2e-6 * grad_scale;
+        expectNear(d.x, dp.x, dp_scale, "image delta p x", count);
+        expectNear(d.y, dp.y, dp_scale, "image delta p y", count);
+        expectNear(d.z, dp.z, dp_scale, "image delta p z", count);
       }
     }
   }
