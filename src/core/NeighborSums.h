@@ -68,7 +68,8 @@ DensitySum densitySums(const NeighborArrays& a, const PairConstants& k, std::siz
 // (optional, with a.packed): the same velocities in 16-byte slots with the density in w,
 // which the x86-64-v3 build then loads instead of gathering.
 VectorSum xsphSums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
-                   const float* velocity, const float* density, const float* velocity_slots = nullptr);
+                   const float* velocity, const float* density,
+                   const float* velocity_slots = nullptr);
 
 // A mirror image map x -> m x + b (row-major 3x3, world frame) across one, two or three
 // container walls (ContainerMirror.h); `walls` has bit f set for each face f reflected across.

@@ -9,9 +9,9 @@
 // division. Here the sums stay in registers, the last group is masked (loads and stores
 // with a lane mask), 1/r comes from the reciprocal square root estimate refined by one
 // Newton step (within ~2 float ulps of 1/sqrt), and neighbours are loaded from 16-byte
-// slots where the caller packed them (Group; gathered otherwise). Results differ from the portable loops at
-// float level only, and are the same for any thread count (one particle, one thread, a fixed
-// order of additions).
+// slots where the caller packed them (Group; gathered otherwise). Results differ from the
+// portable loops at float level only, and are the same for any thread count (one particle,
+// one thread, a fixed order of additions).
 //
 // Conventions the portable loops define and these keep: coincident pairs (r^2 at or below
 // coincident2) get no gradient and are counted; a NaN position turns the density sum NaN (the
