@@ -292,8 +292,9 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   // last lambda pass: unless something moved or reordered the particles since, the step's
   // density pass would compute it again.
   const bool density_known = ended_on_lambda_pass && !settled_elsewhere && !reordered;
-  computeDensityAndVorticity(density_known);
-  if (params_.xsph_viscosity > 0.0f || params_.vorticity_epsilon > 0.0f) applyViscosityAndVorticity(dt);
+  const float* packed_positions = computeDensityAndVorticity(density_known);
+  if (params_.xsph_viscosity > 0.0f || params_.vorticity_epsilon > 0.0f)
+    applyViscosityAndVorticity(dt, packed_positions);
   stats.times.viscosity_vorticity_ms += msSince(t);
 
   t = Clock::now();

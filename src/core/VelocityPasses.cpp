@@ -94,7 +94,7 @@ bool PbfSolver::updateVelocities(float dt) {
   return moved;
 }
 
-void PbfSolver::computeDensityAndVorticity(bool density_known) {
+const float* PbfSolver::computeDensityAndVorticity(bool density_known) {
   const std::size_t n = size();
   const Kernels k(params_.supportRadius());
   const auto& off = grid_->offsets();
@@ -138,7 +138,7 @@ void PbfSolver::computeDensityAndVorticity(bool density_known) {
       neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
     }
   }
-  if (!vorticity) return;
+  if (!vorticity) return arrays.packed;
   // omega_i = sum_j V_j grad_i W_ij x (v_j - v_i): the SPH curl of the velocity.
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -147,9 +147,10 @@ void PbfSolver::computeDensityAndVorticity(bool density_known) {
         k, mass, i, position_, density_, id_, off, nbr,
         [&](std::uint32_t j, const Eigen::Vector3f& vgrad) { return vgrad.cross(velocity_[j] - vi); });
   }
+  return arrays.packed;
 }
 
-void PbfSolver::applyViscosityAndVorticity(float dt) {
+void PbfSolver::applyViscosityAndVorticity(float dt, const float* packed_positions) {
   const std::size_t n = size();
   const Kernels k(params_.supportRadius());
   const auto& off = grid_->offsets();
@@ -161,7 +162,9 @@ void PbfSolver::applyViscosityAndVorticity(float dt) {
 
   const bool xsph = c > 0.0f;
   const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(), nbr.data(),
-                             xsph ? packed_->packPositions(position_) : nullptr};
+                             !xsph ? nullptr
+                             : packed_positions != nullptr ? packed_positions
+                                                           : packed_->packPositions(position_)};
   const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, 0.0f, 0.0f, 0.0f};
   const float* V = velocity_.empty() ? nullptr : velocity_[0].data();
   const float* velocity_slots = xsph ? packed_->packVelocities(velocity_, density_) : nullptr;

@@ -145,8 +145,10 @@ class PbfSolver {
   void applyDeltasRecordingBoundary(const SolidBoundaries& solids);
   // density_known: the solve's last lambda pass measured density_ and neighbor_count_ at
   // these very positions, in this order, so only the vorticity is left to compute.
-  void computeDensityAndVorticity(bool density_known);
-  void applyViscosityAndVorticity(float dt);
+  // Returns the packed positions (PackedSlots.h) it read, or nullptr: the velocity passes
+  // that follow read them too, as nothing moves in between.
+  const float* computeDensityAndVorticity(bool density_known);
+  void applyViscosityAndVorticity(float dt, const float* packed_positions);
   void enforceSpeedLimit(float dt, StepStats& stats);
   bool stateIsFinite() const;
   void gatherStats(StepStats& stats) const;
