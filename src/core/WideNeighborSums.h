@@ -63,13 +63,12 @@ inline void loadPackedSlots(const float* packed, const std::uint32_t* j, __m256&
 // with packed slots also their w (NeighborArrays::packed; 0 in unused lanes).
 struct Group {
   Group(const NeighborArrays& a, std::size_t e, std::size_t end)
-      : valid(validLanes(e, end)),
-        index(end - e >= kWidth  // (`full` is set after this member)
-                  ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a.index + e))
-                  : _mm256_maskload_epi32(reinterpret_cast<const int*>(a.index + e), valid)),
+      : full(end - e >= kWidth),
+        valid(validLanes(e, end)),
+        index(full ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a.index + e))
+                   : _mm256_maskload_epi32(reinterpret_cast<const int*>(a.index + e), valid)),
         triple(_mm256_add_epi32(index, _mm256_slli_epi32(index, 1))),  // 3 j: j's x (j < 2^31 / 3)
-        from_slots(a.packed != nullptr),
-        full(end - e >= kWidth) {
+        from_slots(a.packed != nullptr) {
     if (!from_slots) {
       x = gatherPacked(a.position, 0), y = gatherPacked(a.position, 1), z = gatherPacked(a.position, 2);
       w = _mm256_setzero_ps();
@@ -117,10 +116,10 @@ struct Group {
   __m256 gatherPacked(const float* values, int c) const {
     return _mm256_mask_i32gather_ps(_mm256_setzero_ps(), values + c, triple, validMask(), 4);
   }
+  bool full;  // all eight lanes are neighbours (declared first: `index` reads it)
   __m256i valid, index, triple;
   __m256 x, y, z, w;
   bool from_slots;
-  bool full;  // all eight lanes are neighbours
   const std::uint32_t* lanes = nullptr;  // with slots: the eight indices loaded
   alignas(32) std::uint32_t last_lanes[kWidth];
 };
