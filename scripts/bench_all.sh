@@ -1,7 +1,8 @@
 #!/bin/bash
 # The one command that regenerates every validation figure (issue 5): builds pbf_bench and
 # pbf_stress (via scripts/build.sh), runs the dam break, the settings sweep (hydrostatic +
-# Pareto), the scaling study and the stress matrix, then plots everything.
+# Pareto), the scaling study and the stress matrix, then plots everything and compares the
+# dam-break fronts across resolutions (scripts/front_compare.py).
 #
 #   scripts/bench_all.sh [OUT_DIR] [--quick] [--publish]
 #
@@ -42,6 +43,9 @@ nice -n 5 "$BIN/pbf_bench" --out "$OUT" "${QUICK[@]}" | tee "$OUT/pbf_bench.log"
 stress_status=0
 nice -n 5 "$BIN/pbf_stress" --out "$OUT" "${STRESS[@]}" | tee "$OUT/pbf_stress.log" || stress_status=$?
 /usr/bin/python3 "$ROOT/scripts/plot_bench.py" "$OUT"
+# How far refinement moves the dam-break front (the dt-halved comparison needs a second run:
+# README, Validation 1).
+[ -f "$OUT/dambreak_front.csv" ] && /usr/bin/python3 "$ROOT/scripts/front_compare.py" "$OUT" | tee "$OUT/front_compare.txt"
 
 if [ "$PUBLISH" = 1 ]; then
   DOC="$ROOT/doc/validation"

@@ -31,3 +31,9 @@ endif()
 if(TEST _ctest_pbf_ros_gtest_test_stress_accelerated)
   set_tests_properties(_ctest_pbf_ros_gtest_test_stress_accelerated PROPERTIES ENVIRONMENT "OMP_WAIT_POLICY=passive")
 endif()
+
+# The dam-break study's surge-front measures (slab and sliding window) on known layouts.
+catkin_add_gtest(test_surge_front test/tools/test_surge_front.cpp)
+if(TARGET test_surge_front)
+  target_link_libraries(test_surge_front pbf_bench_support pbf_core gtest_main)
+endif()

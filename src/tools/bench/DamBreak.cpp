@@ -53,6 +53,8 @@ DamBreakResult runDamBreak(const pbf::Scene& scene, const FrontCurve& reference,
     quarter_row.Z.push_back(surgeFront(s.positions(), d, scene.container, 0.25) / r.a);
     full_row.T.push_back(T);
     full_row.Z.push_back(surgeFront(s.positions(), d, scene.container, 1.0) / r.a);
+    r.curve_sliding.T.push_back(T);
+    r.curve_sliding.Z.push_back(surgeFrontSliding(s.positions(), d, scene.container) / r.a);
     if (next_profile < profileTimes().size() && T >= profileTimes()[next_profile] - 1e-9) {
       std::vector<double> h = heightProfile(s.positions(), d, scene.container, bin);
       for (double& v : h) v /= r.a;
@@ -70,6 +72,9 @@ DamBreakResult runDamBreak(const pbf::Scene& scene, const FrontCurve& reference,
   r.rms_no_shift_full_row = frontRms(full_row, reference, 0.0, kFrontRmsTMax);
   r.shift_quarter_row = bestShift(quarter_row, reference, kFrontRmsTMax, kMaxGateShift);
   r.shift_full_row = bestShift(full_row, reference, kFrontRmsTMax, kMaxGateShift);
+  r.rms_no_shift_sliding = frontRms(r.curve_sliding, reference, 0.0, kFrontRmsTMax);
+  r.shift_sliding = bestShift(r.curve_sliding, reference, kFrontRmsTMax, kMaxGateShift);
+  r.rms_shifted_sliding = frontRms(r.curve_sliding, reference, r.shift_sliding, kFrontRmsTMax);
   return r;
 }
 

@@ -32,6 +32,9 @@ struct DamBreakResult {
   // needs a quarter of a particle row, or a full row, instead of half a row to count as fluid.
   double rms_no_shift_quarter_row = 0.0, rms_no_shift_full_row = 0.0;
   double shift_quarter_row = 0.0, shift_full_row = 0.0;
+  // The front of surgeFrontSliding (no slab quantisation): its curve and the same figures.
+  FrontCurve curve_sliding;
+  double rms_no_shift_sliding = 0.0, shift_sliding = 0.0, rms_shifted_sliding = 0.0;
   std::vector<std::vector<double>> profiles;  // h(x)/a at profileTimes(), bins of a/10
   RunTotals totals;
 };

@@ -30,6 +30,30 @@ double surgeFront(const std::vector<Eigen::Vector3f>& positions, float spacing,
   return last < 0 ? 0.0 : (last + 1) * static_cast<double>(spacing);
 }
 
+double surgeFrontSliding(const std::vector<Eigen::Vector3f>& positions, float spacing,
+                         const Eigen::AlignedBox3f& container, double min_fraction) {
+  const double x0 = container.min().x();
+  std::vector<double> x;
+  x.reserve(positions.size());
+  for (const auto& p : positions) x.push_back(p.x() - x0);
+  std::sort(x.begin(), x.end());
+  const double row = std::max(1.0, double(container.sizes().y()) / spacing);
+  const std::size_t needed = static_cast<std::size_t>(std::ceil(std::max(1.0, min_fraction * row)));
+  // The window (x[k] - spacing, x[k]] ends at particle k. As with the slabs, a body must
+  // start within two spacings of the back wall, and qualifying windows may be one spacing
+  // apart (one empty slab) at most: ends more than two spacings apart break the body.
+  double last = -1.0;
+  std::size_t begin = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    while (x[begin] <= x[k] - spacing) ++begin;
+    if (k + 1 - begin < needed) continue;
+    const double limit = last < 0.0 ? 2.0 * spacing : last + 2.0 * spacing;
+    if (x[k] > limit) break;
+    last = x[k];
+  }
+  return last < 0.0 ? 0.0 : last + 0.5 * spacing;
+}
+
 std::vector<double> heightProfile(const std::vector<Eigen::Vector3f>& positions, float spacing,
                                   const Eigen::AlignedBox3f& container, double bin) {
   const Eigen::Vector3f lo = container.min();
