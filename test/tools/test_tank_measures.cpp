@@ -22,6 +22,9 @@ TEST(TankMeasures, AFreshLatticeSitsAtRestDensityAgainstEveryWall) {
   EXPECT_NEAR(r.face_density, 1.0, 1e-3);
   EXPECT_NEAR(r.edge_density, 1.0, 1e-3);
   EXPECT_NEAR(r.corner_density, 1.0, 1e-3);
+  EXPECT_NEAR(r.floor_density, 1.0, 1e-3);
+  EXPECT_NEAR(r.bottom_edge_density, 1.0, 1e-3);
+  EXPECT_NEAR(r.second_layer_inside_density, 1.0, 1e-3);
   EXPECT_NEAR(r.wall_gap, 0.5, 1e-3);
   EXPECT_LT(r.startup_speed_max, 2.0 * 9.81 * 1.0e-4);  // about g dt: gravity alone
   EXPECT_EQ(r.first_steps_speed_max, r.startup_speed_max);  // one step is all of both windows
@@ -41,6 +44,10 @@ TEST(TankMeasures, ALayerThatLeavesAWallIsSeen) {
   scene.solver.time_step = 1.0e-4f;
   const pbf_bench::HydrostaticResult r = pbf_bench::runHydrostatic(scene, 1.0e-4, nullptr);
   EXPECT_TRUE(std::isinf(r.wall_gap)) << r.wall_gap;
+  // Nothing lies on the floor, and its lowest layer is now the one "one spacing higher".
+  EXPECT_TRUE(std::isnan(r.floor_density)) << r.floor_density;
+  EXPECT_TRUE(std::isnan(r.bottom_edge_density)) << r.bottom_edge_density;
+  EXPECT_FALSE(std::isnan(r.second_layer_inside_density));
 }
 
 TEST(TankMeasures, TheBulkCountIsPerVolumeOfTheRegion) {

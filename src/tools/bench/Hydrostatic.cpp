@@ -21,6 +21,8 @@ void measureWallLayers(const pbf::PbfSolver& solver, const pbf::Scene& scene, do
   const auto& rho = solver.densities();
   double sum[4] = {0, 0, 0, 0};
   long long count[4] = {0, 0, 0, 0};
+  double floor_sum[3] = {0, 0, 0};  // on the floor by 0 or 1 side wall; second layer inside
+  long long floor_n[3] = {0, 0, 0};
   constexpr int kWalls = 5;  // x-, x+, y-, y+, floor
   double gap_sum[kWalls] = {0, 0, 0, 0, 0};
   long long gap_n[kWalls] = {0, 0, 0, 0, 0};
@@ -37,12 +39,23 @@ void measureWallLayers(const pbf::PbfSolver& solver, const pbf::Scene& scene, do
     if (x[i].z() > below) continue;
     sum[std::min(touching, 3)] += rho[i] / scene.solver.rest_density;
     ++count[std::min(touching, 3)];
+    const bool on_floor = dist[kWalls - 1] < d;
+    const int sides = touching - (on_floor ? 1 : 0);
+    const int at_floor = on_floor && sides <= 1 ? sides
+                         : touching == 0 && dist[kWalls - 1] < 2.0f * d ? 2 : -1;
+    if (at_floor >= 0) {
+      floor_sum[at_floor] += rho[i] / scene.solver.rest_density;
+      ++floor_n[at_floor];
+    }
   }
   auto mean = [&](int k) { return count[k] ? sum[k] / count[k] : NAN; };
   r.interior_density = mean(0);
   r.face_density = mean(1);
   r.edge_density = mean(2);
   r.corner_density = mean(3);
+  r.floor_density = floor_n[0] ? floor_sum[0] / floor_n[0] : NAN;
+  r.bottom_edge_density = floor_n[1] ? floor_sum[1] / floor_n[1] : NAN;
+  r.second_layer_inside_density = floor_n[2] ? floor_sum[2] / floor_n[2] : NAN;
   r.wall_gap = 0.0;
   for (int w = 0; w < kWalls; ++w)
     r.wall_gap = std::max(r.wall_gap, gap_n[w] ? gap_sum[w] / gap_n[w] : INFINITY);

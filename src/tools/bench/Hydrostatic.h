@@ -29,6 +29,12 @@ struct HydrostaticResult {
   // comparison: the shipped tolerance lets the whole column sit ~0.3 % compressed). The
   // container's top is never wetted here.
   double interior_density = 0.0, face_density = 0.0, edge_density = 0.0, corner_density = 0.0;
+  // The same at one depth, the floor's, where the column is most compressed and where every
+  // corner lies: the first layer on the floor away from the side walls, on the floor by one
+  // side wall (the bottom edges), and the second layer above the floor, away from every
+  // wall (inside, one spacing higher). Beside corner_density they tell the walls' share of
+  // an excess from the depth's.
+  double floor_density = 0.0, bottom_edge_density = 0.0, second_layer_inside_density = 0.0;
   // At the end, per wetted wall the mean distance from it of the particles within one
   // spacing, the largest over the walls [spacings]: ~0.5 while the first layer touches the
   // wall, infinite when no particle is left within a spacing of one.
