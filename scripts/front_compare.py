@@ -3,12 +3,13 @@
 each run's last front at or before T, sampled every 0.01 in T (the runs step at their own
 times). Reads the dambreak_front.csv files of `pbf_bench --only dambreak`.
 
-    front_compare.py DIR [DIR_HALF_DT]
+    front_compare.py DIR [DIR_HALF_DT] [--prefix dambreak_convergence]
 
 prints, for the slab front (Z) and the sliding-window front (Z_sliding, where the CSV has
 it): refinement between the resolution study's runs (coarse -> medium, medium -> fine) in
 each folder, and, with a second folder run with dt halved, each run against itself at half
-the dt.
+the dt. With --prefix dambreak_convergence it reads `pbf_bench --only convergence`'s
+fronts instead and compares each resolution with the next finer one.
 """
 import bisect
 import csv
@@ -19,12 +20,13 @@ T_MAX = 3.0
 T_STEP = 0.01
 
 
-def read_fronts(folder):
-    """{run: {column: ([T...], [Z...])}} from DIR/dambreak_front.csv."""
+def read_fronts(folder, prefix):
+    """{run: {column: ([T...], [Z...])}} from DIR/PREFIX_front.csv, runs in file order."""
     runs = {}
-    path = os.path.join(folder, "dambreak_front.csv")
+    path = os.path.join(folder, prefix + "_front.csv")
     if not os.path.isfile(path):
-        sys.exit(f"front_compare.py: no {path} (run pbf_bench --out {folder} --only dambreak)")
+        study = "convergence" if prefix == "dambreak_convergence" else "dambreak"
+        sys.exit(f"front_compare.py: no {path} (run pbf_bench --out {folder} --only {study})")
     with open(path) as f:
         for row in csv.DictReader(f):
             run = runs.setdefault(row["run"], {})
@@ -59,11 +61,23 @@ def report(label, a, b, column):
 
 
 def main(argv):
-    if len(argv) not in (2, 3) or argv[1].startswith("-"):
+    args = argv[1:]
+    prefix = "dambreak"
+    if "--prefix" in args:
+        k = args.index("--prefix")
+        if k + 1 >= len(args):
+            sys.exit("front_compare.py: --prefix needs a value\n" + __doc__)
+        prefix = args[k + 1]
+        del args[k:k + 2]
+    if len(args) not in (1, 2) or any(a.startswith("-") for a in args):
         sys.exit(__doc__)
-    folders = argv[1:]
-    fronts = [read_fronts(f) for f in folders]
-    pairs = [("coarse d=0.04", "medium d=0.02"), ("medium d=0.02", "fine d=0.0125")]
+    folders = args
+    fronts = [read_fronts(f, prefix) for f in folders]
+    if prefix == "dambreak":
+        pairs = [("coarse d=0.04", "medium d=0.02"), ("medium d=0.02", "fine d=0.0125")]
+    else:
+        order = list(fronts[0])
+        pairs = list(zip(order, order[1:]))
     for column in ("Z", "Z_sliding"):
         print(f"front {column}:")
         for folder, runs in zip(folders, fronts):

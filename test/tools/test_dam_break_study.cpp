@@ -13,8 +13,11 @@
 namespace {
 
 TEST(DamBreakStudy, EveryResolutionHoldsTheWholeColumn) {
-  for (const bool quick : {false, true}) {
-    for (const pbf_bench::DamBreakResolution& res : pbf_bench::damBreakResolutions(quick)) {
+  std::vector<pbf_bench::DamBreakResolution> all = pbf_bench::damBreakConvergence();
+  for (const bool quick : {false, true})
+    for (const pbf_bench::DamBreakResolution& res : pbf_bench::damBreakResolutions(quick)) all.push_back(res);
+  {
+    for (const pbf_bench::DamBreakResolution& res : all) {
       SCOPED_TRACE(res.label);
       const pbf::Scene scene = pbf_bench::damBreakScene(pbf_bench::defaultScenesDir(), res.spacing, res.depth);
       ASSERT_EQ(scene.fluid.size(), 1u);

@@ -26,4 +26,11 @@ std::vector<DamBreakResolution> damBreakResolutions(bool quick);
 
 void runDamBreakStudy(const BenchOptions& options);
 
+// The resolution study carried further (`pbf_bench --only convergence`): the same slab at
+// a/d = 10, 20, 32, 48 and 64, to show where the fitted gate delay and the front converge.
+// Writes dambreak_convergence_front.csv and dambreak_convergence_summary.csv (~10 min on 2
+// cores: the finest run holds 262 144 particles).
+std::vector<DamBreakResolution> damBreakConvergence();
+void runDamBreakConvergence(const BenchOptions& options);
+
 }  // namespace pbf_bench
