@@ -13,7 +13,8 @@
 //   warmstart iterations to 0.1 % / 0.01 % density error with and without the warm start,
 //             at dt 1/240, 1/120, 1/60 s, hydrostatic tank and dam break -> warm_start.csv
 //   tank      the hydrostatic tank's start-up speed, level, density error and first layers
-//             along the walls at d = 0.02 and 0.0125 m, each also with dt halved -> tank.csv
+//             along the walls at d = 0.02 and 0.0125 m, each also with dt halved, and at
+//             d = 0.01 and 0.00833 m -> tank.csv
 //   convergence  (only when named in --only: ~10 min) the dam-break slab at a/d = 10 ... 64
 //             -> dambreak_convergence_front.csv, dambreak_convergence_summary.csv
 // --quick runs smaller, shorter versions of each (for checking the pipeline, not figures).

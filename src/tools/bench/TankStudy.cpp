@@ -28,7 +28,10 @@ void runTankStudy(const BenchOptions& o) {
   const std::vector<TankRun> runs = {{"d=0.02", 0.02f, false},
                                      {"d=0.02, dt halved", 0.02f, true},
                                      {"d=0.0125", 0.0125f, false},
-                                     {"d=0.0125, dt halved", 0.0125f, true}};
+                                     {"d=0.0125, dt halved", 0.0125f, true},
+                                     // Finer still, to see which figures shrink with d.
+                                     {"d=0.01", 0.01f, false},
+                                     {"d=0.00833", 0.3f / 36.0f, false}};
   CsvWriter csv(o.out_dir + "/tank.csv",
                 {"run", "spacing", "particles", "startup_speed_max", "first_steps_speed_max", "height_loss",
                  "bulk_number_density", "avg_density_error",
