@@ -9,7 +9,7 @@
 #   OUT_DIR    where CSV, PNG, logs and summary.md go (default: bench_out)
 #   --quick    small, short versions of every study (minutes; to check the pipeline)
 #   --publish  also copy the PNGs and the summary CSVs into doc/validation/ (the README's)
-# Full run: about 25 min on 2 cores (session 11, quiet). Exit status 1 when a stress case fails.
+# Full run: about 30 min on 2 cores (25 min in session 11, before the tank study's finer runs). Exit status 1 when a stress case fails.
 set -euo pipefail
 export PATH=/usr/bin:/bin:$PATH   # Debian's python3 with matplotlib, not a pyenv shim
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
