@@ -59,13 +59,33 @@ def save(fig, folder, name):
     print(f"wrote {path} ({os.path.getsize(path) // 1024} kB)")
 
 
-def plot_dambreak(folder, md):
-    fronts = read_csv(folder, "dambreak_front.csv")
-    summary = read_csv(folder, "dambreak_summary.csv")
+def reference_front(folder):
+    """Martin & Moyce's front: from the study's folder, else the repository's copy."""
     ref = read_csv(folder, "martin_moyce_1952_surge_front.csv")
     if ref is None:
         here = os.path.dirname(os.path.abspath(__file__))
         ref = read_csv(os.path.join(here, "..", "doc", "validation"), "martin_moyce_1952_surge_front.csv")
+    return ref
+
+
+def finish_front_axes(ax, ref, title):
+    """The reference points, the axes and the legend every surge-front plot shares."""
+    if ref:
+        ax.plot([num(r, "T") for r in ref], [num(r, "Z") for r in ref], "ko", ms=5,
+                label="Martin & Moyce 1952 (n$^2$=2)")
+    ax.set_xlim(0, 3.4)
+    ax.set_ylim(0.9, 4.3)
+    ax.set_xlabel("T = t sqrt(2g/a)")
+    ax.set_ylabel("Z = front / a")
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left")
+
+
+def plot_dambreak(folder, md):
+    fronts = read_csv(folder, "dambreak_front.csv")
+    summary = read_csv(folder, "dambreak_summary.csv")
+    ref = reference_front(folder)
     if not fronts or not summary:
         return
     fig, ax = plt.subplots(figsize=(7, 4.2))
@@ -79,16 +99,7 @@ def plot_dambreak(folder, md):
             s = shifts[run]
             ax.plot([t + s for t in T], Z, lw=1.2, ls="--", color=line.get_color(),
                     label=f"{run}, shifted +{s:.2f}")
-    if ref:
-        ax.plot([num(r, "T") for r in ref], [num(r, "Z") for r in ref], "ko", ms=5,
-                label="Martin & Moyce 1952 (n$^2$=2)")
-    ax.set_xlim(0, 3.4)
-    ax.set_ylim(0.9, 4.3)
-    ax.set_xlabel("T = t sqrt(2g/a)")
-    ax.set_ylabel("Z = front / a")
-    ax.set_title("Dam break: surge front")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    finish_front_axes(ax, ref, "Dam break: surge front")
     save(fig, folder, "dambreak_front.png")
     md.append("### Dam break against Martin & Moyce (1952)\n")
     md.append("| run | particles | a/d | RMS of Z, no shift | fitted shift | RMS with shift | wall s / sim s | "
@@ -113,24 +124,14 @@ def plot_convergence(folder, md):
     summary = read_csv(folder, "dambreak_convergence_summary.csv")
     if not fronts or not summary:
         return
-    ref = read_csv(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "doc", "validation"),
-                   "martin_moyce_1952_surge_front.csv")
+    ref = reference_front(folder)
     fig, ax = plt.subplots(figsize=(7, 4.2))
     for row in summary:
         run = row["run"]
         T = [num(r, "T") for r in fronts if r["run"] == run]
         Z = [num(r, "Z_sliding") for r in fronts if r["run"] == run]
         ax.plot(T, Z, lw=1.2, label=f"{run} (sliding-window front)")
-    if ref:
-        ax.plot([num(r, "T") for r in ref], [num(r, "Z") for r in ref], "ko", ms=5,
-                label="Martin & Moyce 1952 (n$^2$=2)")
-    ax.set_xlim(0, 3.4)
-    ax.set_ylim(0.9, 4.3)
-    ax.set_xlabel("T = t sqrt(2g/a)")
-    ax.set_ylabel("Z = front / a")
-    ax.set_title("Dam break: convergence of the 0.2 m slab")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    finish_front_axes(ax, ref, "Dam break: convergence of the 0.2 m slab")
     save(fig, folder, "dambreak_convergence.png")
     md.append("### Dam break: convergence of the slab\n")
     md.append("| run | particles | RMS no shift | fitted shift | RMS shifted | sliding front: no shift / shift / shifted | wall s / sim s |")
