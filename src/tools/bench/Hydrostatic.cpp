@@ -39,10 +39,11 @@ void measureWallLayers(const pbf::PbfSolver& solver, const pbf::Scene& scene, do
     if (x[i].z() > below) continue;
     sum[std::min(touching, 3)] += rho[i] / scene.solver.rest_density;
     ++count[std::min(touching, 3)];
+    // floor_sum's slot: 0 the floor's first layer, 1 a bottom edge, 2 the second layer inside.
     const bool on_floor = dist[kWalls - 1] < d;
-    const int sides = touching - (on_floor ? 1 : 0);
-    const int at_floor = on_floor && sides <= 1 ? sides
-                         : touching == 0 && dist[kWalls - 1] < 2.0f * d ? 2 : -1;
+    int at_floor = -1;
+    if (on_floor && touching <= 2) at_floor = touching - 1;  // the floor and 0 or 1 side wall
+    else if (touching == 0 && dist[kWalls - 1] < 2.0f * d) at_floor = 2;
     if (at_floor >= 0) {
       floor_sum[at_floor] += rho[i] / scene.solver.rest_density;
       ++floor_n[at_floor];
