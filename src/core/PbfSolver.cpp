@@ -274,6 +274,7 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   }
   chebyshev_->end();
   stats.iterations = iter;
+  stats.iteration_cap_reached = use_tolerance && !ended_on_lambda_pass;
   stats.grid_cells = grid_->cellCount();
   stats.times.solve_ms += msSince(t);
 
@@ -304,8 +305,7 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   if (params_.scorr_k <= 0.0f) stats.skipped_stages.add(SkippedStages::kScorr);
   if (stats.neighbor_lists_reused) stats.skipped_stages.add(SkippedStages::kNeighborSearch);
   if (density_known) stats.skipped_stages.add(SkippedStages::kDensityPass);
-  if (use_tolerance && stats.iterations < params_.max_iterations)
-    stats.skipped_stages.add(SkippedStages::kIterationsAfterTolerance);
+  if (ended_on_lambda_pass) stats.skipped_stages.add(SkippedStages::kIterationsAfterTolerance);
   const bool finite = stateIsFinite();
   if (finite) gatherStats(stats);
   stats.times.other_ms += msSince(t);

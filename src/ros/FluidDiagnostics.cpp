@@ -47,6 +47,14 @@ void reportHealth(const HealthSample& s, const HealthThresholds& t,
   else if (s.avg_density_error > t.density_error_warn)
     verdict.add(DiagnosticStatus::WARN, text.str());
 
+  if (s.capped_steps_recent > 0 &&
+      s.capped_steps_recent > t.capped_steps_warn_fraction * s.steps_recent) {
+    text.str("");
+    text << s.capped_steps_recent << " of " << s.steps_recent << " steps stopped at max_iterations ("
+         << s.max_iterations << ") above density_tolerance";
+    verdict.add(DiagnosticStatus::WARN, text.str());
+  }
+
   if (s.failed_steps_recent > 0)
     verdict.add(DiagnosticStatus::ERROR,
                 std::to_string(s.failed_steps_recent) + " steps given up (non-finite values)");
@@ -67,6 +75,7 @@ void reportHealth(const HealthSample& s, const HealthThresholds& t,
   status.add("particles", s.particle_count);
   status.add("dt [s]", s.dt);
   status.add("iterations", s.iterations);
+  status.add("steps at max_iterations since previous report", s.capped_steps_recent);
   status.add("average density error", s.avg_density_error);
   status.add("max density error", s.max_density_error);
   status.add("max speed [m/s]", s.max_speed);

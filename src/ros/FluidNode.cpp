@@ -154,6 +154,8 @@ void FluidNode::readNodeSettings() {
              thresholds_.density_error_warn);
   pnh_.param("diagnostics/density_error_error", thresholds_.density_error_error,
              thresholds_.density_error_error);
+  pnh_.param("diagnostics/capped_steps_warn_fraction", thresholds_.capped_steps_warn_fraction,
+             thresholds_.capped_steps_warn_fraction);
 }
 
 // Precedence: Fluid.cfg defaults < the scene's `solver:` map < parameters the user set in

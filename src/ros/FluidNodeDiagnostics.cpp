@@ -74,6 +74,8 @@ void FluidNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
     sample = health_;
     health_.nan_recoveries_recent = 0;
     health_.failed_steps_recent = 0;
+    health_.steps_recent = 0;
+    health_.capped_steps_recent = 0;
   }
   reportHealth(sample, thresholds_, status);
   // The surface renderer's work (its own thread; see SurfaceRenderThread).

@@ -131,6 +131,8 @@ void FluidNode::stepOnce() {
     std::lock_guard<std::mutex> lock(health_mutex_);
     health_.nan_recoveries_recent += static_cast<std::uint32_t>(last_stats_.nan_retries);
     health_.failed_steps_recent += last_stats_.failed ? 1u : 0u;
+    health_.steps_recent += 1u;
+    health_.capped_steps_recent += last_stats_.iteration_cap_reached ? 1u : 0u;
   }
   updateHealth();
   publishClock();
@@ -364,6 +366,7 @@ void FluidNode::updateHealth() {
   health_.max_density_error = last_stats_.max_density_error;
   health_.max_speed = last_stats_.max_speed;
   health_.iterations = last_stats_.iterations;
+  health_.max_iterations = solver_->params().max_iterations;
   health_.dt = last_stats_.dt;
   health_.nan_recoveries_total = nan_recoveries_;
 }

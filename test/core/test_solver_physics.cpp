@@ -214,6 +214,32 @@ TEST(SolverPhysics, ResultsIdenticalForOneAndTwoThreadsAndAcrossRuns) {
   expectIdenticalForOneAndTwoThreadsAndAcrossRuns(determinismScene());
 }
 
+// max_iterations bounds a step's cost; a step that stops there before its tolerance says
+// so (the node turns it into a /diagnostics warning), one that meets it or runs a fixed
+// count does not.
+TEST(SolverPhysics, StepThatStopsAtTheIterationCapSaysSo) {
+  auto capReached = [](float tolerance, int max_iterations) {
+    pbf::Scene scene = determinismScene();
+    scene.solver.density_tolerance = tolerance;
+    scene.solver.min_iterations = 2;
+    scene.solver.max_iterations = max_iterations;
+    auto solver = pbf_test::makeSolver(scene);
+    int capped = 0;
+    for (int s = 0; s < 5; ++s) {
+      const pbf::StepStats st = solver->step();
+      EXPECT_EQ(st.iteration_cap_reached, st.iterations == max_iterations && tolerance > 0.0f);
+      EXPECT_EQ(st.iteration_cap_reached,
+                tolerance > 0.0f &&
+                    !st.skipped_stages.has(pbf::SkippedStages::kIterationsAfterTolerance));
+      capped += st.iteration_cap_reached ? 1 : 0;
+    }
+    return capped;
+  };
+  EXPECT_EQ(capReached(1e-7f, 3), 5);  // unreachable in 3 corrections: every step capped
+  EXPECT_EQ(capReached(0.05f, 30), 0);  // 5 %: met after the two forced corrections
+  EXPECT_EQ(capReached(0.0f, 3), 0);    // a fixed count has no tolerance to miss
+}
+
 // The projected solve, the kept multipliers and the acceleration's positions (re-sorted with
 // the particles when the lists are rebuilt within a solve) are no exception.
 TEST(SolverPhysics, WarmStartedAndAcceleratedResultsIdenticalForOneAndTwoThreads) {

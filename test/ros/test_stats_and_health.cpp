@@ -134,6 +134,23 @@ TEST(FluidDiagnostics, DensityErrorWarnsThenErrs) {
   EXPECT_EQ(levelOf(s), DiagnosticStatus::ERROR);
 }
 
+TEST(FluidDiagnostics, StepsStoppedAtTheIterationCapWarnAboveTheirFraction) {
+  auto s = healthy();
+  s.steps_recent = 100;
+  s.max_iterations = 30;
+  s.capped_steps_recent = 10;  // 10 %: at the threshold, not above
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::OK);
+  s.capped_steps_recent = 11;
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::WARN);
+  diagnostic_updater::DiagnosticStatusWrapper status;
+  pbf_ros::reportHealth(s, pbf_ros::HealthThresholds(), status);
+  EXPECT_NE(status.message.find("11 of 100 steps stopped at max_iterations (30)"), std::string::npos)
+      << status.message;
+  s.steps_recent = 0;  // a report with no step since the previous one
+  s.capped_steps_recent = 0;
+  EXPECT_EQ(levelOf(s), DiagnosticStatus::OK);
+}
+
 TEST(FluidDiagnostics, NanRecoveriesWarnAndFailedStepsErr) {
   auto s = healthy();
   s.nan_recoveries_recent = 2;

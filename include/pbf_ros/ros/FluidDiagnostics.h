@@ -1,6 +1,7 @@
 #pragma once
 // Health of the simulation for /diagnostics: OK / WARN / ERROR from the real-time factor,
-// the density error and NaN recoveries. A plain function of a sample, unit-testable.
+// the density error, steps that stopped at max_iterations and NaN recoveries. A plain
+// function of a sample, unit-testable.
 
 #include <cstdint>
 #include <diagnostic_updater/DiagnosticStatusWrapper.h>
@@ -13,6 +14,10 @@ struct HealthThresholds {
   double rtf_error_ratio = 0.25;   // ... below this: ERROR
   double density_error_warn = 0.05;   // average density error above this: WARN
   double density_error_error = 0.2;   // ... above this: ERROR
+  // Steps whose solve stopped at max_iterations above density_tolerance, as a fraction of
+  // the steps since the previous report, above this: WARN (the accuracy asked for is not
+  // reached; a single capped step, e.g. at an impact, is not worth a warning).
+  double capped_steps_warn_fraction = 0.1;
 };
 
 struct HealthSample {
@@ -32,6 +37,9 @@ struct HealthSample {
   std::uint64_t nan_recoveries_total = 0;   // since the last reset
   std::uint32_t nan_recoveries_recent = 0;  // since the previous report
   std::uint32_t failed_steps_recent = 0;    // steps given up since the previous report
+  std::uint32_t steps_recent = 0;           // steps taken since the previous report
+  std::uint32_t capped_steps_recent = 0;    // ... whose solve stopped at max_iterations
+  int max_iterations = 0;                   // the cap, to name it in the report
   std::string last_refused;                 // last refused request, for the user to see
 };
 
