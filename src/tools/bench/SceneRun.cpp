@@ -29,6 +29,7 @@ RunTotals runUntil(pbf::PbfSolver& solver, double t_end, const StepObserver& obs
     }
     ++totals.steps;
     totals.iterations += st.iterations;
+    totals.capped_steps += st.iteration_cap_reached ? 1 : 0;
     if (observe) observe(solver, st);
     if (progress) {
       char detail[64];

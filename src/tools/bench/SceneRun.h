@@ -22,6 +22,7 @@ struct RunTotals {
   double cpu_seconds = 0.0;
   long long steps = 0;
   long long iterations = 0;       // summed over steps
+  long long capped_steps = 0;     // steps whose solve stopped at max_iterations above the tolerance
   int nan_retries = 0;
   bool failed = false;             // a step failed even at the smallest dt
   double wallPerSimSecond() const { return sim_seconds > 0 ? step_wall_seconds / sim_seconds : 0.0; }
