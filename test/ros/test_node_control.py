@@ -10,9 +10,11 @@ import dynamic_reconfigure.client
 import roslib.packages
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from std_srvs.srv import SetBool, Trigger
 
-from fluid_test_util import NODE, cloud_listener, cloud_points, mean, stats_listener
+from fluid_test_util import (NODE, SIMULATION, Latest, cloud_listener, cloud_points, mean,
+                             stats_listener)
 
 
 class NodeControlTest(unittest.TestCase):
@@ -162,6 +164,32 @@ class NodeControlTest(unittest.TestCase):
             self.assertLess(after.step_count, before.step_count)
         finally:
             self.reconfigure.update_configuration({'particle_spacing': 0.05})
+
+    def test_steps_stopped_at_the_iteration_cap_warn_on_diagnostics(self):
+        # A tolerance two corrections cannot reach: every step stops at max_iterations.
+        diagnostics = Latest('/diagnostics', DiagnosticArray)
+        try:
+            self.reconfigure.update_configuration({
+                'min_iterations': 2, 'max_iterations': 2, 'density_tolerance': 1e-6})
+            capped = lambda s: s.name == SIMULATION and 'stopped at max_iterations (2)' in s.message
+            m = diagnostics.next(timeout=20.0, condition=lambda m: any(capped(s) for s in m.status))
+            status = [s for s in m.status if capped(s)][0]
+            self.assertGreaterEqual(status.level, DiagnosticStatus.WARN)
+            values = {kv.key: kv.value for kv in status.values}
+            self.assertGreater(int(values['steps at max_iterations since previous report']), 0)
+            # Back at the defaults the solve meets its tolerance again: no such warning.
+            self.reconfigure.update_configuration({
+                'max_iterations': self.defaults['max_iterations'],
+                'density_tolerance': self.defaults['density_tolerance']})
+            m = diagnostics.next(timeout=20.0, condition=lambda m: any(
+                s.name == SIMULATION and 'max_iterations' not in s.message for s in m.status))
+            self.assertIsNotNone(m)
+        finally:
+            self.reconfigure.update_configuration({
+                'min_iterations': self.defaults['min_iterations'],
+                'max_iterations': self.defaults['max_iterations'],
+                'density_tolerance': self.defaults['density_tolerance']})
+            diagnostics.close()
 
     def test_too_many_particles_are_refused(self):
         # dam_break at 5 mm spacing needs 1.28 M particles, over ~max_particles (1 M).
