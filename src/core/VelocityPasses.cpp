@@ -161,10 +161,11 @@ void PbfSolver::applyViscosityAndVorticity(float dt, const float* packed_positio
   const float veps = params_.vorticity_epsilon * k.h;  // f = epsilon h (N x omega)
 
   const bool xsph = c > 0.0f;
+  // The density pass packed the positions unless the solve had measured the density.
+  const float* packed = nullptr;
+  if (xsph) packed = packed_positions != nullptr ? packed_positions : packed_->packPositions(position_);
   const NeighborArrays arrays{position_.empty() ? nullptr : position_[0].data(), off.data(), nbr.data(),
-                             !xsph ? nullptr
-                             : packed_positions != nullptr ? packed_positions
-                                                           : packed_->packPositions(position_)};
+                             packed};
   const PairConstants pc{k.h, k.h2, mass * k.poly6_coef, 0.0f, 0.0f, 0.0f};
   const float* V = velocity_.empty() ? nullptr : velocity_[0].data();
   const float* velocity_slots = xsph ? packed_->packVelocities(velocity_, density_) : nullptr;
