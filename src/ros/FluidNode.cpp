@@ -154,8 +154,13 @@ void FluidNode::readNodeSettings() {
              thresholds_.density_error_warn);
   pnh_.param("diagnostics/density_error_error", thresholds_.density_error_error,
              thresholds_.density_error_error);
-  pnh_.param("diagnostics/capped_steps_warn_fraction", thresholds_.capped_steps_warn_fraction,
-             thresholds_.capped_steps_warn_fraction);
+  double& capped = thresholds_.capped_steps_warn_fraction;
+  pnh_.param("diagnostics/capped_steps_warn_fraction", capped, capped);
+  if (!(capped >= 0.0 && capped <= 1.0)) {
+    ROS_WARN("pbf_node: ~diagnostics/capped_steps_warn_fraction %g is not in [0, 1]; using 0.1",
+             capped);
+    capped = 0.1;
+  }
 }
 
 // Precedence: Fluid.cfg defaults < the scene's `solver:` map < parameters the user set in
