@@ -226,10 +226,13 @@ class NodeControlTest(unittest.TestCase):
         node = roslib.packages.find_node('pbf_ros', 'pbf_node')
         self.assertTrue(node, 'pbf_node executable not found')
         result = subprocess.run(
-            [node[0], '__name:=bad_scene_fluid', '_scene:=no_such_scene'],
+            [node[0], '__name:=bad_scene_fluid', '_scene:=no_such_scene',
+             '_diagnostics/capped_steps_warn_fraction:=-0.5'],
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=30, text=True)
         self.assertNotEqual(result.returncode, 0)
         self.assertIn('no_such_scene', result.stdout)
+        # Node settings are read first: a bad one is named before the scene fails.
+        self.assertIn('capped_steps_warn_fraction -0.5 is not in [0, 1]', result.stdout)
 
 
 if __name__ == '__main__':
