@@ -157,9 +157,10 @@ void FluidNode::readNodeSettings() {
   double& capped = thresholds_.capped_steps_warn_fraction;
   pnh_.param("diagnostics/capped_steps_warn_fraction", capped, capped);
   if (!(capped >= 0.0 && capped <= 1.0)) {
-    ROS_WARN("pbf_node: ~diagnostics/capped_steps_warn_fraction %g is not in [0, 1]; using 0.1",
-             capped);
-    capped = 0.1;
+    const double fallback = HealthThresholds().capped_steps_warn_fraction;
+    ROS_WARN("pbf_node: ~diagnostics/capped_steps_warn_fraction %g is not in [0, 1]; using %g",
+             capped, fallback);
+    capped = fallback;
   }
 }
 

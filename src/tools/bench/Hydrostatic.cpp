@@ -49,14 +49,14 @@ void measureWallLayers(const pbf::PbfSolver& solver, const pbf::Scene& scene, do
       ++floor_n[at_floor];
     }
   }
-  auto mean = [&](int k) { return count[k] ? sum[k] / count[k] : NAN; };
-  r.interior_density = mean(0);
-  r.face_density = mean(1);
-  r.edge_density = mean(2);
-  r.corner_density = mean(3);
-  r.floor_density = floor_n[0] ? floor_sum[0] / floor_n[0] : NAN;
-  r.bottom_edge_density = floor_n[1] ? floor_sum[1] / floor_n[1] : NAN;
-  r.second_layer_inside_density = floor_n[2] ? floor_sum[2] / floor_n[2] : NAN;
+  auto mean = [](double total, long long n) { return n ? total / n : NAN; };
+  r.interior_density = mean(sum[0], count[0]);
+  r.face_density = mean(sum[1], count[1]);
+  r.edge_density = mean(sum[2], count[2]);
+  r.corner_density = mean(sum[3], count[3]);
+  r.floor_density = mean(floor_sum[0], floor_n[0]);
+  r.bottom_edge_density = mean(floor_sum[1], floor_n[1]);
+  r.second_layer_inside_density = mean(floor_sum[2], floor_n[2]);
   r.wall_gap = 0.0;
   for (int w = 0; w < kWalls; ++w)
     r.wall_gap = std::max(r.wall_gap, gap_n[w] ? gap_sum[w] / gap_n[w] : INFINITY);
