@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
     const auto wall0 = std::chrono::steady_clock::now();
     double next_print = 0.0, step_ms = 0.0;
     int steps_since = 0, nan_retries = 0;
+    long long total_iterations = 0;
     while (solver.time() < seconds - 1e-9) {
       floating.prepare(solver);
       const pbf::StepStats st = solver.step();
@@ -91,6 +92,7 @@ int main(int argc, char** argv) {
       step_ms += st.times.total_ms;
       ++steps_since;
       nan_retries += st.nan_retries;
+      total_iterations += st.iterations;
       if (st.failed) {
         std::fprintf(stderr, "pbf_run: step failed even at the smallest dt\n");
         return 1;
@@ -127,6 +129,9 @@ int main(int argc, char** argv) {
                 "%d NaN retries\n",
                 solver.time(), wall, solver.time() / wall,
                 static_cast<unsigned long long>(solver.stepCount()), nan_retries);
+    std::printf("pbf_run: %.2f constraint iterations per step\n",
+                static_cast<double>(total_iterations) /
+                    static_cast<double>(std::max<std::uint64_t>(solver.stepCount(), 1)));
     if (!scene.emitters.empty() || !scene.drains.empty())
       std::printf("pbf_run: %zu particles = %zu at start + %llu emitted - %llu drained\n", solver.size(),
                   sources.initialParticles(), static_cast<unsigned long long>(sources.emitted()),
