@@ -11,6 +11,8 @@ here="$(cd "$(dirname "$0")/.." && pwd)"
 run_bin="$here/build/devel/lib/pbf_ros/pbf_run"
 rounds="${1:-4}"
 seconds="${2:-1.0}"
+[[ "$rounds" =~ ^[1-9][0-9]*$ ]] || { echo "measure_core_independence.sh: rounds must be a positive integer (got '$rounds')" >&2; exit 2; }
+[[ "$seconds" =~ ^[0-9]*\.?[0-9]+$ && ! "$seconds" =~ ^[0.]+$ ]] || { echo "measure_core_independence.sh: simulated seconds must be a number > 0 (got '$seconds')" >&2; exit 2; }
 [[ -x "$run_bin" ]] || { echo "no $run_bin: run scripts/build.sh first" >&2; exit 1; }
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
