@@ -21,7 +21,10 @@ add_library(pbf_core
   src/core/CandidateFilter.cpp
   src/core/PbfSolver.cpp
   src/core/SolverNeighbors.cpp
+  src/core/JacobiSolve.cpp
   src/core/ConstraintPasses.cpp
+  src/core/GaussSeidelSweep.cpp
+  src/core/CellColours.cpp
   src/core/ChebyshevAcceleration.cpp
   src/core/VelocityPasses.cpp
   src/core/StepGuards.cpp

@@ -1,7 +1,7 @@
 # Core unit tests: GoogleTest, no ROS master. Built by `make tests`, run by ctest.
 set(PBF_CORE_TESTS kernels neighbor_grid solver_physics solver_robustness scene scene_limits
     boundaries calibration obstacle_shapes signed_distance_grid solids_in_fluid
-    solid_wrenches floating_bodies fluid_sources far_solids warm_start step_allocations
+    solid_wrenches floating_bodies fluid_sources far_solids warm_start gauss_seidel step_allocations
     neighbor_sums)
 foreach(t ${PBF_CORE_TESTS})
   catkin_add_gtest(test_core_${t} test/core/test_${t}.cpp)

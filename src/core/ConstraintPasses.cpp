@@ -366,6 +366,25 @@ SolidBoundaries PbfSolver::boundaries() const {
   return solids;
 }
 
+void PbfSolver::projectOntoSolids() {
+  const std::size_t n = size();
+  const SolidBoundaries solids = boundaries();
+  if (!track_wrenches_) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) predicted_[i] = solids.project(predicted_[i]);
+    return;
+  }
+#pragma omp parallel
+  {
+    const int thread = omp_get_thread_num();
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      predicted_[i] = solids.project(predicted_[i], [&](int solid, const Eigen::Vector3f& x, const Eigen::Vector3f& dx) {
+        wrench_sums_.add(thread, solid, x, dx);
+      });
+  }
+}
+
 void PbfSolver::applyDeltasAndBoundary() {
   const std::size_t n = size();
   const SolidBoundaries solids = boundaries();

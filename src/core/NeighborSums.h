@@ -21,8 +21,9 @@ struct NeighborArrays {
   // Optional: the same positions in 16-byte slots x, y, z, w (PackedSlots.h), with w
   // the particle's multiplier lambda for the delta-p sums (deltaSums, deltaSumsWithImage,
   // imageDeltaSums: their `lambda` array is then not read) and unused by the others. The
-  // x86-64-v3 build loads neighbours from these slots instead of gathering each
-  // coordinate; the portable build ignores them.
+  // x86-64-v3 build loads neighbours (and i itself) from these slots instead of gathering
+  // each coordinate, so they must hold the current positions; the portable build ignores
+  // them.
   const float* packed = nullptr;
 };
 

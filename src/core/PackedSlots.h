@@ -35,6 +35,12 @@ class PackedSlots {
     return data(positions_);
   }
 
+  // The Gauss-Seidel sweep's working positions: copied into set 1 (w = 0), which the sweep
+  // then moves in place (and copies back itself).
+  float* sweepPositions(const std::vector<Eigen::Vector3f>& positions) {
+    return packPositions(positions) == nullptr ? nullptr : data(positions_);
+  }
+
   // Set 2, for the lambda pass to fill with (x, y, z, lambda).
   float* lambdaSlots() { return neighborSumsReadPacked() ? data(second_) : nullptr; }
 

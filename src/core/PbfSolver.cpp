@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "CellColours.h"
 #include "PackedSlots.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/ChebyshevAcceleration.h"
@@ -23,18 +24,11 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// The warm start applies half of the previous step's summed multiplier, as IISPH starts
-// from half the previous pressure (Ihmsen et al. 2014). Not all of it: the unrelaxed Jacobi
-// pushes overshoot (neighbours' corrections add up), so their sum exceeds the pressure that
-// holds the fluid; applied in full, a resting tank's level rose by 17-19 % even with the
-// projected solve that takes over-pushes back (ConstraintPasses.cpp), because within the
-// tolerance the surplus still becomes velocity (README "Calibration", warm start).
-constexpr float kWarmStartFraction = 0.5f;
-
 }  // namespace
 
 PbfSolver::PbfSolver()
     : grid_(std::make_unique<NeighborGrid>()),
+      colours_(std::make_unique<CellColours>()),
       chebyshev_(std::make_unique<ChebyshevAcceleration>()),
       lattice_(std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius())),
       packed_(std::make_unique<PackedSlots>()) {}
@@ -234,47 +228,11 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   }
   stats.times.neighbors_ms += msSince(t);
 
-  // Constraint iterations. With a tolerance, the error measured by the lambda pass
-  // decides whether another correction is needed; the last pass is not wasted.
   t = Clock::now();
-  const bool use_tolerance = params_.density_tolerance > 0.0f;
-  int iter = 0;
-  stats.warm_started = prepareWarmStart(dt);
-  // Not while the solids' wrenches are measured: the extrapolation moves fluid against the
-  // solids (and projects it off them) without the solids feeling it, and floating bodies
-  // then gained energy (pbf_stress, raft and buoy: 8 J where 0.06 J is allowed).
-  chebyshev_->begin(predicted_, track_wrenches_ ? 0.0f : params_.chebyshev_rho);
-  float previous_error = std::numeric_limits<float>::infinity();
+  // The constraint iterations, until the density tolerance (or max_iterations).
   bool ended_on_lambda_pass = false;  // the last pass measured the density: see below
-  while (iter < params_.max_iterations) {
-    // With a warm start the first correction applies the previous step's pressure with this
-    // step's gradients: the one correction a Jacobi step cannot make itself, because it
-    // spreads only one neighbourhood per iteration (a column's hydrostatic pressure takes many).
-    const LambdaPass pass =
-        iter == 0 && stats.warm_started ? LambdaPass::kWarmStart : LambdaPass::kNewton;
-    float avg_error = 0.0f;
-    computeLambdas(avg_error, pass);
-    if (!std::isfinite(avg_error)) return false;
-    if (iter == 0) stats.initial_density_error = avg_error;
-    if (pass == LambdaPass::kNewton && avg_error > previous_error) chebyshev_->restart();
-    previous_error = avg_error;
-    if (pass == LambdaPass::kNewton && use_tolerance && iter >= params_.min_iterations &&
-        avg_error <= params_.density_tolerance) {
-      ended_on_lambda_pass = true;
-      break;
-    }
-    correctPositions(pass);
-    if (chebyshev_->isOn()) chebyshev_->extrapolate(predicted_, boundaries());
-    ++iter;
-    try {
-      keepListsValidFor(predicted_, stats);
-    } catch (const std::length_error&) {
-      return false;
-    }
-  }
-  chebyshev_->end();
-  stats.iterations = iter;
-  stats.iteration_cap_reached = use_tolerance && !ended_on_lambda_pass;
+  const bool solved = params_.gauss_seidel ? solveGaussSeidel(stats) : solveJacobi(dt, stats, ended_on_lambda_pass);
+  if (!solved) return false;
   stats.grid_cells = grid_->cellCount();
   stats.times.solve_ms += msSince(t);
 
@@ -310,20 +268,6 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   if (finite) gatherStats(stats);
   stats.times.other_ms += msSince(t);
   return finite;
-}
-
-bool PbfSolver::prepareWarmStart(float dt) {
-  const bool warm = params_.warm_start && lambda_sum_dt_ > 0.0f && params_.max_iterations > 0;
-  if (!warm) {
-    std::fill(lambda_sum_.begin(), lambda_sum_.end(), 0.0f);
-    return false;
-  }
-  // lambda is a position-level multiplier: the pressure it stands for is lambda / dt^2.
-  const float ratio = dt / lambda_sum_dt_;
-  const float scale = kWarmStartFraction * ratio * ratio;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < lambda_sum_.size(); ++i) lambda_sum_[i] *= scale;
-  return true;
 }
 
 bool PbfSolver::predict(float dt) {

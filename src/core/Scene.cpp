@@ -129,6 +129,8 @@ const std::map<std::string, Setter>& solverSetters() {
     b("unilateral_constraint", &SolverParams::unilateral_constraint);
     b("warm_start", &SolverParams::warm_start);
     f("chebyshev_rho", &SolverParams::chebyshev_rho);
+    b("gauss_seidel", &SolverParams::gauss_seidel);
+    f("gauss_seidel_omega", &SolverParams::gauss_seidel_omega);
     f("scorr_k", &SolverParams::scorr_k);
     f("scorr_n", &SolverParams::scorr_n);
     f("scorr_delta_q", &SolverParams::scorr_delta_q);

@@ -70,6 +70,7 @@ void PbfSolver::rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points)
   grid_->findNeighbors(points, radius);  // `points` is one of the arrays reorder() permuted
   if (params_.neighbor_skin > 0.0f) build_position_ = points;
   lists_valid_ = true;
+  colours_valid_ = false;  // the Gauss-Seidel order follows the new cells
 }
 
 // The solver's corrections move particles too, so the skin is checked after each of them,

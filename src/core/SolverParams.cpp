@@ -62,6 +62,12 @@ std::string SolverParams::validate() const {
   if (err.tellp() == 0 && !(finite(chebyshev_rho) && chebyshev_rho >= 0.0f && chebyshev_rho <= 0.99f))
     err << "chebyshev_rho must be in [0, 0.99] (0: off; got " << chebyshev_rho << ")";
   if (err.tellp() == 0) nonNegative("scorr_k", scorr_k);
+  if (err.tellp() == 0 && !(finite(gauss_seidel_omega) && gauss_seidel_omega > 0.0f && gauss_seidel_omega < 2.0f))
+    err << "gauss_seidel_omega must be in (0, 2) (1: plain Gauss-Seidel; got " << gauss_seidel_omega << ")";
+  if (err.tellp() == 0 && gauss_seidel && (warm_start || chebyshev_rho > 0.0f || scorr_k > 0.0f))
+    err << "gauss_seidel replaces the Jacobi solve that warm_start, chebyshev_rho and scorr_k act on: "
+        << "turn those off to use it (got warm_start " << (warm_start ? "true" : "false")
+        << ", chebyshev_rho " << chebyshev_rho << ", scorr_k " << scorr_k << ")";
   if (err.tellp() == 0 && !(finite(scorr_n) && scorr_n >= 1.0f && scorr_n <= 16.0f))
     err << "scorr_n must be in [1, 16] (got " << scorr_n << ")";
   if (err.tellp() == 0 && !(finite(scorr_delta_q) && scorr_delta_q > 0.0f && scorr_delta_q < 1.0f))

@@ -124,6 +124,17 @@ struct Group {
   alignas(32) std::uint32_t last_lanes[kWidth];
 };
 
+// Particle i's own position: from its slot where the caller packed them (every pass packs
+// the positions it reads; the Gauss-Seidel sweep moves the slots alone), else from the x,y,z
+// array.
+struct OwnPosition {
+  OwnPosition(const NeighborArrays& a, std::size_t i) {
+    const float* p = a.packed != nullptr ? a.packed + 4 * i : a.position + 3 * i;
+    x = p[0], y = p[1], z = p[2];
+  }
+  float x, y, z;
+};
+
 // 1 / sqrt(r2) for r2 > 0, and 0 where r2 is 0 (or NaN: then r2 * rinv stays NaN).
 inline __m256 inverseLength(__m256 r2) {
   const __m256 y = _mm256_rsqrt_ps(r2);
@@ -186,8 +197,8 @@ inline LambdaSums wideLambdaSums(const NeighborArrays& a, const PairConstants& k
                                  float* pair_gradient) {
   const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
-  const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
-               zi = splat(a.position[3 * i + 2]);
+  const OwnPosition own(a, i);
+  const __m256 xi = splat(own.x), yi = splat(own.y), zi = splat(own.z);
   __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
   DirectPairBook book;
   for (std::size_t e = begin; e < end; e += kWidth) {
@@ -206,8 +217,8 @@ inline LambdaSums wideLambdaSums(const NeighborArrays& a, const PairConstants& k
 inline VectorSum wideDeltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
                                const float* pair_gradient) {
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
-  const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
-               zi = splat(a.position[3 * i + 2]), li = splat(lambda[i]);
+  const OwnPosition own(a, i);
+  const __m256 xi = splat(own.x), yi = splat(own.y), zi = splat(own.z), li = splat(lambda[i]);
   __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
@@ -223,8 +234,8 @@ inline VectorSum wideDeltaSums(const NeighborArrays& a, std::size_t i, const flo
 inline DensitySum wideDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i) {
   const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
-  const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
-               zi = splat(a.position[3 * i + 2]);
+  const OwnPosition own(a, i);
+  const __m256 xi = splat(own.x), yi = splat(own.y), zi = splat(own.z);
   __m256 rho = _mm256_setzero_ps();
   std::uint32_t count = 0;
   for (std::size_t e = begin; e < end; e += kWidth) {
@@ -240,8 +251,8 @@ inline VectorSum wideXsphSums(const NeighborArrays& a, const PairConstants& k, s
                               const float* velocity, const float* density, const float* velocity_slots) {
   const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
-  const __m256 xi = splat(a.position[3 * i]), yi = splat(a.position[3 * i + 1]),
-               zi = splat(a.position[3 * i + 2]);
+  const OwnPosition own(a, i);
+  const __m256 xi = splat(own.x), yi = splat(own.y), zi = splat(own.z);
   const __m256 ux = splat(velocity[3 * i]), uy = splat(velocity[3 * i + 1]), uz = splat(velocity[3 * i + 2]);
   __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
   for (std::size_t e = begin; e < end; e += kWidth) {
@@ -292,7 +303,8 @@ inline LambdaSums wideLambdaSumsWithImage(const NeighborArrays& a, const PairCon
                                           float* image_gradient) {
   const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
-  const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
+  const OwnPosition own(a, i);
+  const float pxi = own.x, pyi = own.y, pzi = own.z;
   const __m256 xi = splat(pxi), yi = splat(pyi), zi = splat(pzi);
   const WideImageOffset o(r, pxi, pyi, pzi);
   const __m256 rix = _mm256_sub_ps(xi, o.dx(xi, yi, zi)), riy = _mm256_sub_ps(yi, o.dy(xi, yi, zi)),
@@ -322,7 +334,8 @@ inline VectorSum wideDeltaSumsWithImage(const NeighborArrays& a, std::size_t i, 
                                         const float* lambda, const float* pair_gradient,
                                         const float* image_gradient) {
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
-  const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
+  const OwnPosition own(a, i);
+  const float pxi = own.x, pyi = own.y, pzi = own.z;
   const __m256 xi = splat(pxi), yi = splat(pyi), zi = splat(pzi), li = splat(lambda[i]);
   const WideImageOffset o(r, pxi, pyi, pzi);
   __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
@@ -347,7 +360,8 @@ inline LambdaSums wideLambdaSumsWithImages(const NeighborArrays& a, const PairCo
                                            float* pair_gradient) {
   const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
-  const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
+  const OwnPosition own(a, i);
+  const float pxi = own.x, pyi = own.y, pzi = own.z;
   const __m256 xi = splat(pxi), yi = splat(pyi), zi = splat(pzi);
   __m256 rho = _mm256_setzero_ps(), gx = rho, gy = rho, gz = rho, grad2 = rho;
   DirectPairBook book;
@@ -380,7 +394,8 @@ inline VectorSum wideImageDeltaSums(const NeighborArrays& a, const PairConstants
                                     const Reflection& r, const float* lambda) {
   const WideConstants wk(k);
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];
-  const float pxi = a.position[3 * i], pyi = a.position[3 * i + 1], pzi = a.position[3 * i + 2];
+  const OwnPosition own(a, i);
+  const float pxi = own.x, pyi = own.y, pzi = own.z;
   const WideImageOffset o(r, pxi, pyi, pzi);
   const __m256 li = splat(lambda[i]);
   __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;

@@ -27,6 +27,8 @@ void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
   c.unilateral_constraint = p.unilateral_constraint;
   c.warm_start = p.warm_start;
   c.chebyshev_rho = p.chebyshev_rho;
+  c.gauss_seidel = p.gauss_seidel;
+  c.gauss_seidel_omega = p.gauss_seidel_omega;
   c.wall_density = p.wall_density;
   c.wall_friction = p.wall_friction;
   c.scorr_k = p.scorr_k;
@@ -58,6 +60,8 @@ pbf::SolverParams configToSolverParams(const FluidConfig& c, pbf::SolverParams b
   p.unilateral_constraint = c.unilateral_constraint;
   p.warm_start = c.warm_start;
   p.chebyshev_rho = static_cast<float>(c.chebyshev_rho);
+  p.gauss_seidel = c.gauss_seidel;
+  p.gauss_seidel_omega = static_cast<float>(c.gauss_seidel_omega);
   p.wall_density = c.wall_density;
   p.wall_friction = static_cast<float>(c.wall_friction);
   p.scorr_k = static_cast<float>(c.scorr_k);

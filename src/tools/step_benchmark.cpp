@@ -68,7 +68,10 @@ std::vector<pbf::Obstacle> farRobotLinks(float spacing, float support_radius) {
   return links;
 }
 
-std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles, int boundary = kWallDensity) {
+// gauss_seidel: the same steps with 4 Gauss-Seidel sweeps instead of 4 Jacobi iterations
+// (SolverParams::gauss_seidel): the cost of one sweep against one Jacobi iteration.
+std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles, int boundary = kWallDensity,
+                                               bool gauss_seidel = false) {
   pbf::Scene scene = pbf::loadSceneFile(std::string(PBF_SOURCE_DIR) + "/config/scenes/dam_break.yaml");
   scene.solver.wall_density = boundary != kClampOnly;
   if (boundary == kWallDensityAndObstacles) {
@@ -90,6 +93,7 @@ std::unique_ptr<pbf::PbfSolver> makeWarmSolver(int kilo_particles, int boundary 
   scene.solver.time_step = 1.0f / 400.0f;
   scene.solver.min_iterations = scene.solver.max_iterations = 4;
   scene.solver.density_tolerance = 0.0f;
+  scene.solver.gauss_seidel = gauss_seidel;
   auto solver = std::make_unique<pbf::PbfSolver>();
   pbf::setUpSolver(scene, *solver);
   while (solver->time() < 0.25) solver->step();
@@ -101,7 +105,8 @@ void BM_DamBreakStep(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(1));
   const int boundary = static_cast<int>(state.range(2));
   omp_set_num_threads(threads);
-  auto solver = makeWarmSolver(kilo, boundary);
+  const bool gauss_seidel = state.range(3) != 0;
+  auto solver = makeWarmSolver(kilo, boundary, gauss_seidel);
   pbf::StageTimes sum;
   for (auto _ : state) {
     const pbf::StepStats st = solver->step();
@@ -125,8 +130,8 @@ void BM_DamBreakStep(benchmark::State& state) {
 
 // Scaling with particle count and threads (default boundaries).
 BENCHMARK(BM_DamBreakStep)
-    ->ArgNames({"kparticles", "threads", "boundary"})
-    ->ArgsProduct({{20, 80, 320}, {1, 2}, {kWallDensity}})
+    ->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
+    ->ArgsProduct({{20, 80, 320}, {1, 2}, {kWallDensity}, {0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);
@@ -134,8 +139,8 @@ BENCHMARK(BM_DamBreakStep)
 // Cost of boundary handling: clamp only (0), wall density (1), plus obstacles (2).
 BENCHMARK(BM_DamBreakStep)
     ->Name("BM_BoundaryCost")
-    ->ArgNames({"kparticles", "threads", "boundary"})
-    ->ArgsProduct({{20}, {2}, {kClampOnly, kWallDensity, kWallDensityAndObstacles}})
+    ->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
+    ->ArgsProduct({{20}, {2}, {kClampOnly, kWallDensity, kWallDensityAndObstacles}, {0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);
@@ -144,8 +149,18 @@ BENCHMARK(BM_DamBreakStep)
 //   pbf_step_benchmark --benchmark_filter=BM_FarRobotLinks --benchmark_repetitions=5
 BENCHMARK(BM_DamBreakStep)
     ->Name("BM_FarRobotLinks")
-    ->ArgNames({"kparticles", "threads", "boundary"})
-    ->ArgsProduct({{20}, {1}, {kWallDensity, kFarRobot}})
+    ->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
+    ->ArgsProduct({{20}, {1}, {kWallDensity, kFarRobot}, {0}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(1.0);
+
+// One Gauss-Seidel sweep against one Jacobi iteration (4 of each per step), 20k particles:
+//   pbf_step_benchmark --benchmark_filter=BM_GaussSeidelCost --benchmark_repetitions=5
+BENCHMARK(BM_DamBreakStep)
+    ->Name("BM_GaussSeidelCost")
+    ->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
+    ->ArgsProduct({{20}, {1, 2}, {kWallDensity}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);

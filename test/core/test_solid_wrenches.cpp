@@ -159,6 +159,24 @@ void expectArchimedes(const pbf::Obstacle& o, double volume, const char* what) {
   EXPECT_NEAR(-(a.container.force.z() + w.force.z()), a.weight, 0.01 * a.weight) << what;
 }
 
+// The Gauss-Seidel solve attributes the images' unbalanced push to the walls itself
+// (GaussSeidelSweep.cpp): the same balance must hold.
+TEST(SolidWrenches, GaussSeidelContainerCarriesTheFluidsWeight) {
+  pbf::Scene scene = tank();
+  scene.solver.gauss_seidel = true;
+  scene.solver.min_iterations = 1;
+  const Averages a = restingAverages(scene, kWarm, 2 * kSpan);
+  std::printf("Gauss-Seidel: weight %.3f N, container %.3f %.3f %.3f N (%.3f %%)\n", a.weight,
+              a.container.force.x(), a.container.force.y(), a.container.force.z(),
+              100.0 * (-a.container.force.z() / a.weight - 1.0));
+  EXPECT_NEAR(-a.container.force.z(), a.weight, 0.01 * a.weight);
+  EXPECT_NEAR(a.container.force.head<2>().norm(), 0.0, 0.01 * a.weight);
+  const double wall = a.faces[1].force.x();
+  const double expected = 0.5 * kRhoG * a.level * a.level * kWidth;
+  std::printf("Gauss-Seidel: +x wall %.3f N, rho0 g H^2 W / 2 %.3f N\n", wall, expected);
+  EXPECT_NEAR(wall, expected, 0.03 * expected);
+}
+
 TEST(SolidWrenches, HeldSphereFeelsArchimedes) {
   pbf::Obstacle ball;
   ball.shape = pbf::Obstacle::Shape::Sphere;

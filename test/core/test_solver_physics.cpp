@@ -252,4 +252,15 @@ TEST(SolverPhysics, WarmStartedAndAcceleratedResultsIdenticalForOneAndTwoThreads
   expectIdenticalForOneAndTwoThreadsAndAcrossRuns(scene);
 }
 
+// The Gauss-Seidel sweeps (27 colours of cells, CellColours.h), lists rebuilt within solves.
+TEST(SolverPhysics, GaussSeidelResultsIdenticalForOneAndTwoThreads) {
+  pbf::Scene scene = determinismScene();
+  scene.solver.density_tolerance = 0.001f;
+  scene.solver.max_iterations = 30;
+  scene.solver.min_iterations = 1;
+  scene.solver.gauss_seidel = true;
+  scene.solver.neighbor_skin = 0.01f;  // lists rebuilt (particles re-sorted) within solves
+  expectIdenticalForOneAndTwoThreadsAndAcrossRuns(scene);
+}
+
 }  // namespace

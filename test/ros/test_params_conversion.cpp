@@ -27,6 +27,8 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   p.unilateral_constraint = false;
   p.warm_start = true;
   p.chebyshev_rho = 0.9f;
+  p.gauss_seidel = true;  // not a valid combination with the two above: only copied here
+  p.gauss_seidel_omega = 1.6f;
   p.wall_density = false;
   p.wall_friction = 0.4f;
   p.scorr_k = 0.1f;
@@ -44,6 +46,8 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   EXPECT_FALSE(q.unilateral_constraint);
   EXPECT_TRUE(q.warm_start);
   EXPECT_FLOAT_EQ(q.chebyshev_rho, 0.9f);
+  EXPECT_TRUE(q.gauss_seidel);
+  EXPECT_FLOAT_EQ(q.gauss_seidel_omega, 1.6f);
   EXPECT_FALSE(q.wall_density);
   EXPECT_FLOAT_EQ(q.wall_friction, 0.4f);
   EXPECT_FLOAT_EQ(q.scorr_k, 0.1f);
@@ -57,6 +61,8 @@ TEST(ParamsConversion, DefaultsMatchTheSolverDefaults) {
   EXPECT_FLOAT_EQ(from_cfg.particle_spacing, solver.particle_spacing);
   EXPECT_FLOAT_EQ(from_cfg.xsph_viscosity, solver.xsph_viscosity);
   EXPECT_FLOAT_EQ(from_cfg.cfm_relaxation, solver.cfm_relaxation);
+  EXPECT_EQ(from_cfg.gauss_seidel, solver.gauss_seidel);
+  EXPECT_FLOAT_EQ(from_cfg.gauss_seidel_omega, solver.gauss_seidel_omega);
   EXPECT_EQ(from_cfg.max_iterations, solver.max_iterations);
   EXPECT_TRUE(from_cfg.gravity.isApprox(solver.gravity));
   EXPECT_EQ(from_cfg.validate(), "");

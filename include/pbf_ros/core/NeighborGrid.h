@@ -35,6 +35,10 @@ class NeighborGrid {
   const std::vector<std::uint32_t>& offsets() const { return offsets_; }
   const std::vector<std::uint32_t>& indices() const { return indices_; }
   std::size_t cellCount() const { return rank_.size(); }
+  // The grid of the last build: its dimensions in cells, and the cell of each sorted point
+  // (dense index x + dims.x (y + dims.y z)); the points of a cell are consecutive.
+  const Eigen::Vector3i& dims() const { return dims_; }
+  const std::vector<std::uint32_t>& pointCells() const { return point_cell_; }
 
   // Interleaves the low 21 bits of x, y, z (x in the lowest bit).
   static constexpr std::size_t kMaxPairs = std::size_t(1) << 28;

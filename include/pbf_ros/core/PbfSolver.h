@@ -27,6 +27,7 @@ class LatticeBoundary;
 class NeighborGrid;
 class SolidBoundaries;
 class ChebyshevAcceleration;
+class CellColours;
 class PackedSlots;
 
 class PbfSolver {
@@ -128,6 +129,19 @@ class PbfSolver {
   void correctPositions(LambdaPass pass = LambdaPass::kNewton);
   void computeScorrScales(const Scorr& scorr);
   Eigen::Vector3f pairGradient(std::size_t i, std::uint32_t j) const;  // grad_i W, exact path
+  // The Jacobi solve (JacobiSolve.cpp): false when a pass went non-finite or the lists
+  // overflowed; sets the stats' iteration fields.
+  bool solveJacobi(float dt, StepStats& stats, bool& ended_on_lambda_pass);
+  // The Gauss-Seidel solve (GaussSeidelSweep.cpp, SolverParams::gauss_seidel): sweeps until
+  // the tolerance; false when a sweep went non-finite. Sets the stats' iteration fields.
+  bool solveGaussSeidel(StepStats& stats);
+  // One sweep; returns the average compression each constraint had when it was projected.
+  float gaussSeidelSweep();
+  struct SweepContext;
+  void projectDensityConstraint(std::size_t i, const SweepContext& sweep);
+  void recordGaussSeidelBoundaryPush(std::size_t i, float lambda, const SweepContext& sweep);
+  // Every prediction onto the solids (recording what they did while wrenches are tracked).
+  void projectOntoSolids();
   void applyDeltasAndBoundary();
   // True when some particle settled elsewhere than its corrected prediction (a solid or
   // friction moved it).
@@ -199,6 +213,9 @@ class PbfSolver {
   std::vector<float> reorder_float_scratch_;
 
   std::unique_ptr<NeighborGrid> grid_;
+  std::unique_ptr<CellColours> colours_;  // of the grid's last build (Gauss-Seidel order)
+  bool colours_valid_ = false;
+  std::vector<float> sweep_residual_;     // each constraint's compression when projected
   std::unique_ptr<ChebyshevAcceleration> chebyshev_;  // of the constraint iterations
   std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h
   // Positions (and lambda, velocities) in 16-byte slots for the wide neighbour sums.
