@@ -133,8 +133,9 @@ class PbfSolver {
   // overflowed; sets the stats' iteration fields.
   bool solveJacobi(float dt, StepStats& stats, bool& ended_on_lambda_pass);
   // The Gauss-Seidel solve (GaussSeidelSweep.cpp, SolverParams::gauss_seidel): sweeps until
-  // the tolerance; false when a sweep went non-finite. Sets the stats' iteration fields.
-  bool solveGaussSeidel(StepStats& stats);
+  // the tolerance; false when a sweep went non-finite. Sets the stats' iteration fields;
+  // ended_on_density: the last density measured (density_) is at the final positions.
+  bool solveGaussSeidel(StepStats& stats, bool& ended_on_density);
   // One sweep; returns the average compression each constraint had when it was projected.
   float gaussSeidelSweep();
   struct SweepContext;
@@ -162,6 +163,9 @@ class PbfSolver {
   // Returns the packed positions (PackedSlots.h) it read, or nullptr: the velocity passes
   // that follow read them too, as nothing moves in between.
   const float* computeDensityAndVorticity(bool density_known);
+  // density_ and neighbor_count_ at `at` (positions in the current lists' order; `packed`:
+  // the same in slots, PackedSlots::packPositions, or nullptr).
+  void measureDensity(const std::vector<Eigen::Vector3f>& at, const float* packed);
   void applyViscosityAndVorticity(float dt, const float* packed_positions);
   void enforceSpeedLimit(float dt, StepStats& stats);
   bool stateIsFinite() const;

@@ -68,10 +68,10 @@ struct SolverParams {
   // instead of all at once from the same positions (Jacobi). A pressure then crosses the
   // fluid in fewer iterations: 2-2.7x fewer for the same tolerance (README "Performance").
   // The order is fixed by the grid (27 colours of cells, CellColours.h), so results are the
-  // same for any thread count. An iteration is one sweep; the tolerance is checked against
-  // the density each constraint had when the sweep reached it (so one sweep is always made,
-  // and the reported error, measured after the solve, is lower). It replaces the Jacobi
-  // solve, so it does not combine with warm_start, chebyshev_rho or scorr_k (setParams says so).
+  // same for any thread count. An iteration is one sweep, after which a density pass checks
+  // the tolerance (the step then reuses that density). min_iterations 1 suits it: a sweep
+  // does not overshoot as a single Jacobi correction does. It replaces the Jacobi solve, so
+  // it does not combine with warm_start, chebyshev_rho or scorr_k (setParams says so).
   bool gauss_seidel = false;
   // Over-relaxation of each Gauss-Seidel projection (SOR), in (0, 2): 1 is plain
   // Gauss-Seidel; above 1 each constraint over-corrects by this factor, which carries the
