@@ -231,7 +231,8 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   t = Clock::now();
   // The constraint iterations, until the density tolerance (or max_iterations).
   bool ended_on_lambda_pass = false;  // the last pass measured the density: see below
-  const bool solved = params_.gauss_seidel ? solveGaussSeidel(stats, ended_on_lambda_pass) : solveJacobi(dt, stats, ended_on_lambda_pass);
+  const bool solved = params_.gauss_seidel ? solveGaussSeidel(stats, ended_on_lambda_pass)
+                                           : solveJacobi(dt, stats, ended_on_lambda_pass);
   if (!solved) return false;
   stats.grid_cells = grid_->cellCount();
   stats.times.solve_ms += msSince(t);
