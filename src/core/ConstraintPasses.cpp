@@ -385,12 +385,4 @@ void PbfSolver::projectOntoSolids() {
   }
 }
 
-void PbfSolver::applyDeltasAndBoundary() {
-  const std::size_t n = size();
-  const SolidBoundaries solids = boundaries();
-  if (track_wrenches_) return applyDeltasRecordingBoundary(solids);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) predicted_[i] = solids.project(predicted_[i] + delta_[i]);
-}
-
 }  // namespace pbf

@@ -214,8 +214,7 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
     updateFluidReach();
     // The solve starts inside the solids' bounds, as every later pass sees it: the
     // container's images (ContainerMirror.h) are only right for particles in front of a wall.
-    std::fill(delta_.begin(), delta_.end(), Eigen::Vector3f::Zero());
-    applyDeltasAndBoundary();
+    projectOntoSolids();
   }
   stats.times.other_ms += msSince(t);
   if (!predicted_finite) return false;

@@ -58,7 +58,8 @@ void PbfSolver::recordBoundaryDensityPush(const SolidBoundaries& solids) {
   }
 }
 
-// applyDeltasAndBoundary, recording what each projection did.
+// The delta-p pass kept apart (wrench tracking): delta p applied and projected onto the
+// solids, recording what each projection did.
 void PbfSolver::applyDeltasRecordingBoundary(const SolidBoundaries& solids) {
   const std::size_t n = size();
 #pragma omp parallel

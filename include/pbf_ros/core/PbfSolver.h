@@ -143,7 +143,6 @@ class PbfSolver {
   void recordGaussSeidelBoundaryPush(std::size_t i, float lambda, const SweepContext& sweep);
   // Every prediction onto the solids (recording what they did while wrenches are tracked).
   void projectOntoSolids();
-  void applyDeltasAndBoundary();
   // True when some particle settled elsewhere than its corrected prediction (a solid or
   // friction moved it).
   bool updateVelocities(float dt);
@@ -187,7 +186,7 @@ class PbfSolver {
   std::uint32_t next_id_ = 0;                // fresh ids for added particles
   // Per-step scratch, Jacobi style: each pass reads one array and writes another.
   std::vector<Eigen::Vector3f> predicted_;   // x*
-  std::vector<Eigen::Vector3f> delta_;       // delta p (wrench tracking, start of a step)
+  std::vector<Eigen::Vector3f> delta_;       // delta p, kept apart while wrenches are tracked
   std::vector<Eigen::Vector3f> corrected_;   // the corrected predictions, swapped in
   std::vector<Eigen::Vector3f> new_velocity_;
   std::vector<Eigen::Vector3f> vorticity_;
