@@ -98,7 +98,7 @@ bool PbfSolver::solveGaussSeidel(StepStats& stats, bool& ended_on_density) {
     } catch (const std::length_error&) {
       return false;
     }
-    if (!use_tolerance || sweeps < params_.min_iterations) continue;
+    if (!use_tolerance || sweeps < params_.minIterations()) continue;
     measureDensity(predicted_, packed_->packPositions(predicted_));
     const double error = deterministicSum(size(), [&](std::size_t i) {
                            return std::max(0.0, density_[i] * inv_rho0 - 1.0);

@@ -50,7 +50,7 @@ bool PbfSolver::solveJacobi(float dt, StepStats& stats, bool& ended_on_lambda_pa
     if (iter == 0) stats.initial_density_error = avg_error;
     if (pass == LambdaPass::kNewton && avg_error > previous_error) chebyshev_->restart();
     previous_error = avg_error;
-    if (pass == LambdaPass::kNewton && use_tolerance && iter >= params_.min_iterations &&
+    if (pass == LambdaPass::kNewton && use_tolerance && iter >= params_.minIterations() &&
         avg_error <= params_.density_tolerance) {
       ended_on_lambda_pass = true;
       break;

@@ -52,11 +52,12 @@ std::string SolverParams::validate() const {
   if (err.tellp() == 0 && min_time_step > max_time_step)
     err << "min_time_step (" << min_time_step << ") must be <= max_time_step (" << max_time_step
         << ")";
-  if (err.tellp() == 0 && (min_iterations < 1 || max_iterations < min_iterations ||
+  if (err.tellp() == 0 && (min_iterations < 0 || max_iterations < minIterations() ||
                            max_iterations > 1000))
-    err << "iterations must satisfy 1 <= min_iterations <= max_iterations <= 1000 (got "
-        << min_iterations << ", " << max_iterations << "; min_iterations defaults to 2: set it "
-        << "too for fewer)";
+    err << "iterations must satisfy min_iterations <= max_iterations <= 1000 (got "
+        << min_iterations << ", " << max_iterations << "; min_iterations 0 means "
+        << minIterations() << " for the " << (gauss_seidel ? "Gauss-Seidel" : "Jacobi")
+        << " solve: set it too for fewer)";
   if (err.tellp() == 0) nonNegative("density_tolerance", density_tolerance);
   if (err.tellp() == 0) nonNegative("cfm_relaxation", cfm_relaxation);
   if (err.tellp() == 0 && !(finite(chebyshev_rho) && chebyshev_rho >= 0.0f && chebyshev_rho <= 0.99f))

@@ -121,11 +121,35 @@ std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& 
     }
     if (!note.str().empty()) notes.push_back(note.str());
   }
-  if (config.min_iterations > config.max_iterations) {
+  // gauss_seidel replaces the Jacobi solve that warm_start, chebyshev_rho and scorr_k act on.
+  // Whichever side this request turned on wins, with a note (a checkbox in rqt is expected to
+  // work); when it turned on both, the solver's own check refuses the request.
+  const bool warm_on = config.warm_start, cheb_on = config.chebyshev_rho > 0.0,
+             scorr_on = config.scorr_k > 0.0;
+  if (config.gauss_seidel && (warm_on || cheb_on || scorr_on)) {
+    const bool gauss_seidel_turned_on = !in_force.gauss_seidel;
+    const bool jacobi_turned_on = (warm_on && !in_force.warm_start) ||
+                                  (cheb_on && !(in_force.chebyshev_rho > 0.0)) ||
+                                  (scorr_on && !(in_force.scorr_k > 0.0));
+    const std::string jacobi_names = std::string(warm_on ? "warm_start " : "") +
+                                     (cheb_on ? "chebyshev_rho " : "") + (scorr_on ? "scorr_k " : "");
+    if (jacobi_turned_on && !gauss_seidel_turned_on) {
+      config.gauss_seidel = false;
+      notes.push_back("gauss_seidel: turned off, since " + jacobi_names + "act on the Jacobi solve");
+    } else if (gauss_seidel_turned_on && !jacobi_turned_on) {
+      config.warm_start = false;
+      config.chebyshev_rho = 0.0;
+      config.scorr_k = 0.0;
+      notes.push_back(jacobi_names + "turned off, since gauss_seidel replaces the Jacobi solve they act on");
+    }
+  }
+  // min_iterations 0 is the solve's own floor (SolverParams::minIterations).
+  const int least_iterations =
+      config.min_iterations > 0 ? config.min_iterations : (config.gauss_seidel ? 1 : 2);
+  if (least_iterations > config.max_iterations) {
     notes.push_back("max_iterations: " + std::to_string(config.max_iterations) +
-                    " is below min_iterations; raised to " +
-                    std::to_string(config.min_iterations));
-    config.max_iterations = config.min_iterations;
+                    " is below min_iterations; raised to " + std::to_string(least_iterations));
+    config.max_iterations = least_iterations;
   }
   if (config.min_time_step > config.max_time_step) {
     std::ostringstream note;

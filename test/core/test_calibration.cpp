@@ -190,23 +190,48 @@ TEST(Calibration, RestingTankComesToRest) {
 }
 
 // The walls carry their share of the pressure gradient (mirror images, ContainerMirror.h):
-// a tank started from the lattice and solved tightly stays still for its first 0.2 s,
-// columns along the walls and edges included. With ghost fluid fixed to the walls the edge
-// columns, missing the wall side's push, slid down at 0.12 m/s within 0.1 s while the middle
-// rose. (Later the lattice itself rearranges, as any particle fluid at rest does.)
+// a tank started from the lattice and solved tightly, the columns along the walls and edges
+// move no more than the middle ones. With ghost fluid fixed to the walls the edge columns,
+// missing the wall side's push, slid down at 0.12 m/s within 0.1 s while the middle rose.
+// The lattice itself then rearranges, as any particle fluid at rest does: the Jacobi solve
+// keeps it still (< 0.05 m/s) for the first 0.2 s; under the Gauss-Seidel sweeps, whose
+// residual is less even (max density error 0.22 % against 0.11 % at the same 0.03 %
+// average), the rearrangement starts at ~0.1 s, in the middle, and reaches 0.13 m/s by 0.2 s.
 TEST(Calibration, ColumnsAlongTheWallsAreHeldLikeTheMiddle) {
-  pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
-  scene.solver.density_tolerance = 0.0003f;
-  scene.solver.max_iterations = 200;
-  auto solver = pbf_test::makeSolver(scene);
-  double max_speed = 0.0;
-  while (solver->time() < 0.2) {
-    const pbf::StepStats st = solver->step();
-    ASSERT_FALSE(st.failed);
-    max_speed = std::max(max_speed, st.max_speed);
+  for (bool gauss_seidel : {false, true}) {
+    SCOPED_TRACE(gauss_seidel ? "Gauss-Seidel" : "Jacobi");
+    pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
+    scene.solver.gauss_seidel = gauss_seidel;
+    scene.solver.density_tolerance = 0.0003f;
+    scene.solver.max_iterations = 200;
+    auto solver = pbf_test::makeSolver(scene);
+    const float d = scene.solver.particle_spacing;
+    const Eigen::AlignedBox3f box = scene.container;
+    auto alongAWall = [&](const Eigen::Vector3f& x) {
+      for (int a = 0; a < 2; ++a)
+        if (x[a] - box.min()[a] < 2 * d || box.max()[a] - x[a] < 2 * d) return true;
+      return false;
+    };
+    double max_speed = 0.0, wall_v2 = 0.0, middle_v2 = 0.0;
+    long long wall_n = 0, middle_n = 0;
+    while (solver->time() < 0.2) {
+      const pbf::StepStats st = solver->step();
+      ASSERT_FALSE(st.failed);
+      max_speed = std::max(max_speed, st.max_speed);
+      const auto x = solver->positions();
+      const auto v = solver->velocities();
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        (alongAWall(x[i]) ? wall_v2 : middle_v2) += v[i].squaredNorm();
+        ++(alongAWall(x[i]) ? wall_n : middle_n);
+      }
+    }
+    const double wall_rms = std::sqrt(wall_v2 / wall_n), middle_rms = std::sqrt(middle_v2 / middle_n);
+    std::printf("lattice tank, tolerance 0.03 %%, %s: first 0.2 s max speed %.4f m/s, rms along the "
+                "walls %.4f, in the middle %.4f m/s\n",
+                gauss_seidel ? "Gauss-Seidel" : "Jacobi", max_speed, wall_rms, middle_rms);
+    EXPECT_LT(wall_rms, 1.25 * middle_rms);
+    if (!gauss_seidel) EXPECT_LT(max_speed, 0.05);
   }
-  std::printf("lattice tank, tolerance 0.03 %%: max speed in the first 0.2 s %.4f m/s\n", max_speed);
-  EXPECT_LT(max_speed, 0.05);
 }
 
 // Wall friction is a physical law: the same sliding layer at two time steps slows the same.

@@ -100,18 +100,25 @@ TEST(Scene, SolverYamlIsAllOrNothing) {
   EXPECT_FLOAT_EQ(p.gravity.z(), -1.0f);
 }
 
-// One iteration per step was the old default's floor; now that min_iterations defaults to 2,
-// asking for max_iterations 1 alone says which parameter to set as well.
-TEST(Scene, FewerIterationsThanTheDefaultMinimumNameIt) {
+// min_iterations 0 (the default) is the solve's own floor: one Gauss-Seidel sweep, two
+// Jacobi corrections. Asking the Jacobi solve for max_iterations 1 alone says which
+// parameter to set as well.
+TEST(Scene, FewerIterationsThanTheSolvesFloorNameIt) {
   pbf::SolverParams p;
-  try {
-    pbf::applySolverYaml("{max_iterations: 1}", "params", p);
-    FAIL() << "max_iterations below the default min_iterations was accepted";
-  } catch (const pbf::SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("min_iterations defaults to 2"), std::string::npos) << e.what();
-  }
-  pbf::applySolverYaml("{min_iterations: 1, max_iterations: 1}", "params", p);
+  pbf::applySolverYaml("{max_iterations: 1}", "params", p);
   EXPECT_EQ(p.max_iterations, 1);
+  EXPECT_EQ(p.minIterations(), 1);
+  try {
+    pbf::applySolverYaml("{gauss_seidel: false, max_iterations: 1}", "params", p);
+    FAIL() << "max_iterations below the Jacobi solve's floor was accepted";
+  } catch (const pbf::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("min_iterations 0 means 2 for the Jacobi solve"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(p.gauss_seidel) << "a refused setting must leave the parameters as they were";
+  pbf::applySolverYaml("{gauss_seidel: false, min_iterations: 1, max_iterations: 1}", "params", p);
+  EXPECT_EQ(p.max_iterations, 1);
+  EXPECT_EQ(p.minIterations(), 1);
 }
 
 TEST(Scene, DynamicObstaclesFloatWithTheirMassAndPublishedFrame) {

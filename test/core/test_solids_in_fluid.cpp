@@ -52,9 +52,11 @@ TEST(SolidsInFluid, NoParticlePenetratesASweptCylinderOrMeshedCup) {
   std::printf("deepest penetration: cylinder %.2e m, meshed cup %.2e m (particle radius %.4f m)\n",
               -worst[0], -worst[1], r);
   EXPECT_GT(worst[0], -1e-4 * r);
-  // The grid's distance is trilinear: pushing a particle out along its normal lands it
-  // within a small fraction of r of where it should be where the field bends (rim, edges).
-  EXPECT_GT(worst[1], -0.1 * r);
+  // The grid's distance is trilinear: one push along its normal lands short where the field
+  // bends (rim, edges), by 0.12 r here under the over-relaxed Gauss-Seidel sweep, which moves
+  // particles deeper before they are pushed out. The push is repeated for meshes
+  // (SolidBoundaries::project), which lands them on the surface.
+  EXPECT_GT(worst[1], -1e-4 * r);
 }
 
 }  // namespace

@@ -34,6 +34,7 @@ pbf::SolverParams freeSpaceParams() {
   p.adaptive_time_step = false;
   p.time_step = 1e-3f;
   p.min_iterations = p.max_iterations = 1;
+  p.gauss_seidel = false;  // the Jacobi iteration the transcription below computes
   p.xsph_viscosity = 0.0f;
   p.vorticity_epsilon = 0.0f;
   p.max_speed_factor = 0.0f;
@@ -118,24 +119,29 @@ TEST(SolverPhysics, OneIterationMatchesScalarTranscriptionOfTheEquations) {
 }
 
 TEST(SolverPhysics, PressureSolveConservesMomentumWithoutGravityAndWalls) {
-  pbf::SolverParams p = freeSpaceParams();
-  p.min_iterations = p.max_iterations = 4;
-  p.unilateral_constraint = false;  // also pulls: both signs of lambda exercised
-  // s_corr at 100x the paper's k saturates its bound; a pair uses the smaller bound of its
-  // two particles, so even then its pushes are equal and opposite.
-  p.scorr_k = 10.0f;
-  pbf::PbfSolver solver;
-  solver.setParams(p);
-  solver.setContainer(Eigen::AlignedBox3f());
-  solver.setParticles(compressedCluster(p.particle_spacing, 12, 2));
-  for (int s = 0; s < 20; ++s) solver.step();
-  double speed_sum = 0.0;
-  for (const auto& v : solver.velocities()) speed_sum += v.norm();
-  const Eigen::Vector3d momentum = pbf::velocitySum(solver.velocities());
-  ASSERT_GT(speed_sum, 1e-3) << "the cluster must expand";
-  // Every pair term is antisymmetric, so the sum cancels up to float round-off: ~1e-7
-  // relative per term, growing like sqrt(terms).
-  EXPECT_LT(momentum.norm(), 1e-5 * speed_sum) << momentum.transpose();
+  for (bool gauss_seidel : {false, true}) {
+    SCOPED_TRACE(gauss_seidel ? "Gauss-Seidel" : "Jacobi");
+    pbf::SolverParams p = freeSpaceParams();
+    p.min_iterations = p.max_iterations = 4;
+    p.unilateral_constraint = false;  // also pulls: both signs of lambda exercised
+    // Jacobi: s_corr at 100x the paper's k saturates its bound; a pair uses the smaller bound
+    // of its two particles, so even then its pushes are equal and opposite. Gauss-Seidel: each
+    // projection moves i and its neighbours by gradients that sum to zero.
+    p.gauss_seidel = gauss_seidel;
+    p.scorr_k = gauss_seidel ? 0.0f : 10.0f;
+    pbf::PbfSolver solver;
+    solver.setParams(p);
+    solver.setContainer(Eigen::AlignedBox3f());
+    solver.setParticles(compressedCluster(p.particle_spacing, 12, 2));
+    for (int s = 0; s < 20; ++s) solver.step();
+    double speed_sum = 0.0;
+    for (const auto& v : solver.velocities()) speed_sum += v.norm();
+    const Eigen::Vector3d momentum = pbf::velocitySum(solver.velocities());
+    ASSERT_GT(speed_sum, 1e-3) << "the cluster must expand";
+    // Every pair term is antisymmetric, so the sum cancels up to float round-off: ~1e-7
+    // relative per term, growing like sqrt(terms).
+    EXPECT_LT(momentum.norm(), 1e-5 * speed_sum) << momentum.transpose();
+  }
 }
 
 TEST(SolverPhysics, HydrostaticTankSettlesAtRestDensityAndVolumeLevel) {
@@ -246,6 +252,7 @@ TEST(SolverPhysics, WarmStartedAndAcceleratedResultsIdenticalForOneAndTwoThreads
   pbf::Scene scene = determinismScene();
   scene.solver.density_tolerance = 0.001f;  // enough iterations for the acceleration to act
   scene.solver.max_iterations = 30;
+  scene.solver.gauss_seidel = false;
   scene.solver.warm_start = true;
   scene.solver.chebyshev_rho = 0.9f;
   scene.solver.neighbor_skin = 0.01f;  // lists rebuilt (particles re-sorted) within solves

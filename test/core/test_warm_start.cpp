@@ -27,6 +27,7 @@ TankRun settledTank(bool warm_start, float tolerance, float chebyshev_rho = 0.0f
   scene.solver.time_step = 1.0f / 120.0f;
   scene.solver.density_tolerance = tolerance;
   scene.solver.max_iterations = 300;
+  scene.solver.gauss_seidel = false;  // the warm start acts on the Jacobi solve
   scene.solver.warm_start = warm_start;
   scene.solver.chebyshev_rho = chebyshev_rho;
   auto solver = pbf_test::makeSolver(scene);
@@ -64,6 +65,7 @@ TEST(WarmStart, SettledTankNeedsFewerIterationsAndGainsNoEnergy) {
 TEST(WarmStart, OnlyFromAPressureOfTheseParticles) {
   pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
   scene.solver.particle_spacing = 0.04f;
+  scene.solver.gauss_seidel = false;
   scene.solver.warm_start = true;
   auto solver = pbf_test::makeSolver(scene);
   EXPECT_FALSE(solver->step().warm_started) << "the first step has no pressure to start from";
@@ -91,6 +93,7 @@ Collapse collapse(bool warm_start, float chebyshev_rho, float tolerance, float s
   scene.solver.particle_spacing = 0.03f;
   scene.solver.density_tolerance = tolerance;
   scene.solver.max_iterations = 100;
+  scene.solver.gauss_seidel = false;  // the warm start acts on the Jacobi solve
   scene.solver.warm_start = warm_start;
   scene.solver.chebyshev_rho = chebyshev_rho;
   if (skin >= 0.0f) scene.solver.neighbor_skin = skin;
@@ -149,6 +152,7 @@ TEST(WarmStart, AccelerationStaysOffWhileWrenchesAreMeasured) {
   scene.solver.particle_spacing = 0.04f;
   scene.solver.density_tolerance = 1e-4f;  // enough iterations for the acceleration to act
   scene.solver.max_iterations = 30;
+  scene.solver.gauss_seidel = false;
   scene.solver.warm_start = true;
   auto run = [&](float rho, bool tracked) {
     scene.solver.chebyshev_rho = rho;

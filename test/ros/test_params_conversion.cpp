@@ -27,7 +27,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   p.unilateral_constraint = false;
   p.warm_start = true;
   p.chebyshev_rho = 0.9f;
-  p.gauss_seidel = true;  // not a valid combination with the two above: only copied here
+  p.gauss_seidel = false;  // not the default: the round trip must carry it
   p.gauss_seidel_omega = 1.6f;
   p.wall_density = false;
   p.wall_friction = 0.4f;
@@ -46,7 +46,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   EXPECT_FALSE(q.unilateral_constraint);
   EXPECT_TRUE(q.warm_start);
   EXPECT_FLOAT_EQ(q.chebyshev_rho, 0.9f);
-  EXPECT_TRUE(q.gauss_seidel);
+  EXPECT_FALSE(q.gauss_seidel);
   EXPECT_FLOAT_EQ(q.gauss_seidel_omega, 1.6f);
   EXPECT_FALSE(q.wall_density);
   EXPECT_FLOAT_EQ(q.wall_friction, 0.4f);
@@ -105,6 +105,40 @@ TEST(ParamsConversion, InconsistentPairsAreFixed) {
   EXPECT_DOUBLE_EQ(c.min_time_step, c.max_time_step);
   EXPECT_EQ(notes.size(), 2u);
   EXPECT_EQ(pbf_ros::configToSolverParams(c).validate(), "");
+}
+
+// gauss_seidel replaces the Jacobi solve that warm_start, chebyshev_rho and scorr_k act on:
+// what the request turned on wins, with a note; turning on both is left to the solver's
+// check, which refuses it.
+TEST(ParamsConversion, SolverChoiceFollowsWhatTheRequestTurnedOn) {
+  const FluidConfig gauss_seidel = FluidConfig::__getDefault__();
+  ASSERT_TRUE(gauss_seidel.gauss_seidel);
+  FluidConfig c = gauss_seidel;
+  c.warm_start = true;
+  c.chebyshev_rho = 0.9;
+  auto notes = pbf_ros::sanitizeConfig(c, gauss_seidel);
+  EXPECT_FALSE(c.gauss_seidel);
+  EXPECT_TRUE(c.warm_start);
+  EXPECT_TRUE(mentions(notes, "gauss_seidel: turned off"));
+  EXPECT_EQ(pbf_ros::configToSolverParams(c).validate(), "");
+
+  const FluidConfig jacobi = c;
+  c.gauss_seidel = true;
+  notes = pbf_ros::sanitizeConfig(c, jacobi);
+  EXPECT_TRUE(c.gauss_seidel);
+  EXPECT_FALSE(c.warm_start);
+  EXPECT_DOUBLE_EQ(c.chebyshev_rho, 0.0);
+  EXPECT_TRUE(mentions(notes, "warm_start chebyshev_rho turned off"));
+  EXPECT_EQ(pbf_ros::configToSolverParams(c).validate(), "");
+
+  c = FluidConfig::__getDefault__();
+  c.gauss_seidel = false;
+  const FluidConfig plain_jacobi = c;
+  c.gauss_seidel = true;
+  c.scorr_k = 0.1;
+  pbf_ros::sanitizeConfig(c, plain_jacobi);
+  EXPECT_TRUE(c.gauss_seidel && c.scorr_k > 0.0) << "both turned on: left as asked";
+  EXPECT_NE(pbf_ros::configToSolverParams(c).validate().find("gauss_seidel replaces"), std::string::npos);
 }
 
 TEST(ParamsConversion, SaneConfigHasNoNotes) {

@@ -14,7 +14,7 @@
 namespace {
 
 const char* kFastOptions =
-    "warm_start: true\nchebyshev_rho: 0.95\ncfl_factor: 0.8\nmax_time_step: 0.00833333\n";
+    "gauss_seidel: false\nwarm_start: true\nchebyshev_rho: 0.95\ncfl_factor: 0.8\nmax_time_step: 0.00833333\n";
 
 pbf_bench::StressResult runFullCase(const std::string& name) {
   std::vector<pbf_bench::StressCase> cases = pbf_bench::stressCases(false);

@@ -50,6 +50,8 @@ class SolidBoundaries {
   // Solids by number, for what the fluid does to each (SolidWrench.h): the container's six
   // walls in its own frame (-x, +x, -y, +y, -z, +z), then obstacle k as kContainerFaces + k.
   static constexpr int kContainerFaces = 6;
+  // Pushes out of a mesh per projection at most (project()).
+  static constexpr int kMeshPushes = 3;
   std::size_t solidCount() const { return kContainerFaces + obstacles_->size(); }
 
   // density()'s gradient split by the obstacle that lends it: part(solid, gradient) for each
@@ -95,9 +97,14 @@ Eigen::Vector3f SolidBoundaries::project(const Eigen::Vector3f& p_in, Report&& r
   for (const std::uint32_t k : near_) {
     const Obstacle& o = (*obstacles_)[k];
     if ((p - o.pose.translation()).squaredNorm() > (o.boundingRadius() + radius_) * (o.boundingRadius() + radius_)) continue;
-    Eigen::Vector3f n;
-    const float s = o.signedDistance(p, n);
-    if (s < radius_) {
+    // A mesh's distance is trilinear in a grid (SignedDistanceGrid.h): one push along its
+    // normal lands short where the field bends (rims, edges), the more so the deeper the
+    // particle was, so the push is repeated there. The other shapes' distances are exact.
+    const int pushes = o.shape == Obstacle::Shape::Mesh ? kMeshPushes : 1;
+    for (int q = 0; q < pushes; ++q) {
+      Eigen::Vector3f n;
+      const float s = o.signedDistance(p, n);
+      if (s >= radius_) break;
       const Eigen::Vector3f push = (radius_ - s) * n;
       report(kContainerFaces + static_cast<int>(k), p, push);
       p += push;

@@ -25,17 +25,19 @@ struct SolverParams {
 
   // --- constraint solve ----------------------------------------------------------------
   // Shipped defaults from the Pareto study (README "Validation"): iterate until the average
-  // density error is below 0.3 % (about 7 times at rest, 3 in a dam break), and at least
-  // twice: one Jacobi correction overshoots where corrections overlap (walls, impacts) and
-  // the overshoot becomes speed that no density error shows (at half the default dt a fine
-  // dam break reached the speed cap with one correction per step).
+  // density error is below 0.3 % (about 3 Gauss-Seidel sweeps at rest, 1-2 in a dam break).
+  // min_iterations 0 (the default) is the solve's own floor: one Gauss-Seidel sweep, or two
+  // Jacobi corrections, because one Jacobi correction overshoots where corrections overlap
+  // (walls, impacts) and the overshoot becomes speed that no density error shows (at half
+  // the default dt a fine dam break reached the speed cap with one correction per step); a
+  // sweep projects each constraint from the positions its neighbours left and does not.
   // max_iterations only bounds a step's cost; the tolerance is the accuracy asked for. A
   // Jacobi solve needs about (depth/d)^2 corrections to carry a column's pressure, so any
   // fixed cap binds in a deep or finely resolved fluid: 30 did in the 0.3 m tank at
   // d = 0.0083 m (41 needed on average); with 100 at most one step in 360 stops there at
   // every spacing the validation runs. A step that stops at the cap says so
   // (StepStats::iteration_cap_reached, the node's /diagnostics).
-  int min_iterations = 2;
+  int min_iterations = 0;
   int max_iterations = 100;
   // Stop iterating once the average density error is below this (after min_iterations).
   // 0 means a fixed count: always max_iterations.
@@ -69,10 +71,10 @@ struct SolverParams {
   // fluid in fewer iterations: 2-2.7x fewer for the same tolerance (README "Performance").
   // The order is fixed by the grid (27 colours of cells, CellColours.h), so results are the
   // same for any thread count. An iteration is one sweep, after which a density pass checks
-  // the tolerance (the step then reuses that density). min_iterations 1 suits it: a sweep
-  // does not overshoot as a single Jacobi correction does. It replaces the Jacobi solve, so
-  // it does not combine with warm_start, chebyshev_rho or scorr_k (setParams says so).
-  bool gauss_seidel = false;
+  // the tolerance (the step then reuses that density). The default since session 21 (README
+  // "Performance"). It replaces the Jacobi solve, so it does not combine with warm_start,
+  // chebyshev_rho or scorr_k (setParams says so; set gauss_seidel false to use them).
+  bool gauss_seidel = true;
   // Over-relaxation of each Gauss-Seidel projection (SOR), in (0, 2): 1 is plain
   // Gauss-Seidel; above 1 each constraint over-corrects by this factor, which carries the
   // pressure faster. Dimensionless: the same at every spacing and time step.
@@ -122,6 +124,8 @@ struct SolverParams {
   // (sqrt(2 |g| L)). Only hostile settings reach it; it bounds kinetic energy. 0 = none.
   float max_speed_factor = 4.0f;
 
+  // The iterations every step makes at least: min_iterations, or the solve's own floor.
+  int minIterations() const { return min_iterations > 0 ? min_iterations : (gauss_seidel ? 1 : 2); }
   float supportRadius() const { return support_radius_factor * particle_spacing; }
   // m = rho0 d^3: the water one cell of the start lattice holds. The fluid's weight, momentum
   // and kinetic energy, the forces on solids and the SPH volumes m / rho use it.

@@ -27,8 +27,11 @@ pbf::SolverParams configToSolverParams(const FluidConfig& config,
 //  - a non-finite number is refused: the field takes its value from `in_force` (the config
 //    currently applied), with a note;
 //  - a value outside the range of config/Fluid.cfg is clamped to it, with a note;
-//  - min_iterations > max_iterations raises max_iterations, min_time_step > max_time_step
-//    lowers min_time_step, each with a note.
+//  - gauss_seidel with warm_start, chebyshev_rho or scorr_k (Jacobi-only options): the side
+//    `config` turned on relative to `in_force` wins, the other is turned off;
+//  - min_iterations (or its floor, when 0) > max_iterations raises max_iterations,
+//    min_time_step > max_time_step lowers min_time_step;
+//  each with a note.
 // Returns the notes (empty when the config was already fine).
 std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& in_force);
 

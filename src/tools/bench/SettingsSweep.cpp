@@ -83,13 +83,28 @@ std::vector<Setting> settings(bool quick) {
   add("cfl0.4_max1/240_iter6", "combo", [](pbf::SolverParams& p) { fixedIterations(p, 6); cfl(p, 0.4f, 1.0f / 240); });
   add("cfl0.4_max1/240_tol0.003", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.4f, 1.0f / 240); });
   add("cfl0.4_max1/180_tol0.003", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.4f, 1.0f / 180); });
-  // The shipped defaults: at least two corrections per step (a single Jacobi correction
-  // overshoots where corrections overlap; see the half-dt pair below).
-  add("cfl0.4_max1/240_tol0.003_min2", "combo",
-      [](pbf::SolverParams& p) { tolerance(p, 0.003f, 30, 2); cfl(p, 0.4f, 1.0f / 240); });
+  // The shipped defaults (Gauss-Seidel sweeps to 0.3 %, at least one, at most 100).
+  add("shipped", "combo", [](pbf::SolverParams&) {});
   add("cfl0.2_max1/480_tol0.003", "combo", [](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.2f, 1.0f / 480); });
-  add("cfl0.2_max1/480_tol0.003_min2", "combo",
-      [](pbf::SolverParams& p) { tolerance(p, 0.003f, 30, 2); cfl(p, 0.2f, 1.0f / 480); });
+  // The Jacobi solve (shipped until session 21) beside it: fixed counts, and its tolerance
+  // settings with at least two corrections per step (a single Jacobi correction overshoots
+  // where corrections overlap; the half-dt pair shows it).
+  auto jacobi = [](std::function<void(pbf::SolverParams&)> f) {
+    return [f](pbf::SolverParams& p) {
+      p.gauss_seidel = false;
+      f(p);
+    };
+  };
+  for (int n : {2, 4, 8})
+    add("jacobi_iter" + std::to_string(n), "jacobi", jacobi([n](pbf::SolverParams& p) { fixedIterations(p, n); }));
+  add("jacobi_cfl0.4_max1/240_tol0.003_min2", "jacobi",
+      jacobi([](pbf::SolverParams& p) { tolerance(p, 0.003f, 100, 2); cfl(p, 0.4f, 1.0f / 240); }));
+  add("jacobi_cfl0.4_max1/240_tol0.001_min2", "jacobi",
+      jacobi([](pbf::SolverParams& p) { tolerance(p, 0.001f, 100, 2); cfl(p, 0.4f, 1.0f / 240); }));
+  add("jacobi_cfl0.2_max1/480_tol0.003", "jacobi",
+      jacobi([](pbf::SolverParams& p) { tolerance(p, 0.003f); cfl(p, 0.2f, 1.0f / 480); }));
+  add("jacobi_cfl0.2_max1/480_tol0.003_min2", "jacobi",
+      jacobi([](pbf::SolverParams& p) { tolerance(p, 0.003f, 100, 2); cfl(p, 0.2f, 1.0f / 480); }));
   // Resolution at the provisional defaults.
   add("d0.04", "resolution", [](pbf::SolverParams&) {}, 0.04f);
   add("d0.028", "resolution", [](pbf::SolverParams&) {}, 0.028f);

@@ -89,6 +89,7 @@ void runWarmStartStudy(const BenchOptions& o) {
           p.density_tolerance = tol;
           p.min_iterations = 1;
           p.max_iterations = kIterationCap;
+          p.gauss_seidel = false;  // the warm start and acceleration act on the Jacobi solve
           p.warm_start = warm;
           p.chebyshev_rho = rho;
           const char* name = rho > 0.0f ? "warm+cheb" : warm ? "warm" : "cold";
