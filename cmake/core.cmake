@@ -24,7 +24,7 @@ add_library(pbf_core
   src/core/JacobiSolve.cpp
   src/core/ConstraintPasses.cpp
   src/core/GaussSeidelSweep.cpp
-  src/core/CellColours.cpp
+  src/core/BlockColours.cpp
   src/core/ChebyshevAcceleration.cpp
   src/core/VelocityPasses.cpp
   src/core/StepGuards.cpp

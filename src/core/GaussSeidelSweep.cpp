@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "CellColours.h"
+#include "BlockColours.h"
 #include "ContainerMirror.h"
 #include "DeterministicSum.h"
 #include "PackedSlots.h"
@@ -31,8 +31,8 @@
 // after the sweep, as after a Jacobi correction. The sums are NeighborSums' (AVX2 where the
 // CPU has it), the moves are scattered one neighbour at a time.
 //
-// Order and threads: the cells of one colour (CellColours.h) share no particle, so each
-// colour's cells are projected in parallel, one cell per thread at a time, and the result
+// Order and threads: the blocks of cells of one colour (BlockColours.h) share no particle,
+// so each colour's blocks are projected in parallel, a block by one thread, and the result
 // does not depend on the thread count.
 
 namespace pbf {
@@ -151,17 +151,17 @@ float PbfSolver::gaussSeidelSweep() {
                            boundaries(),
                            images};
 #pragma omp parallel
-  for (int colour = 0; colour < CellColours::kColours; ++colour) {
-    const CellColours::Cell* cells = colours_->first(colour);
+  for (int colour = 0; colour < BlockColours::kColours; ++colour) {
+    const BlockColours::Block* blocks = colours_->first(colour);
     const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(colours_->count(colour));
-    // Each thread takes one contiguous run of the colour's cells (Morton order: one region
+    // Each thread takes one contiguous run of the colour's blocks (Morton order: one region
     // of the fluid), so that the threads move particles in different parts of memory:
     // handed out a few cells at a time, they shared cache lines of neighbours' positions,
     // and two threads swept slower than one. The barrier at the end of each colour is
     // what keeps the colours apart.
 #pragma omp for schedule(static)
     for (std::ptrdiff_t q = 0; q < count; ++q)
-      for (std::uint32_t i = cells[q].begin; i < cells[q].end; ++i) projectDensityConstraint(i, sweep);
+      for (std::uint32_t i = blocks[q].begin; i < blocks[q].end; ++i) projectDensityConstraint(i, sweep);
   }
   if (slots == nullptr) {
     projectOntoSolids();

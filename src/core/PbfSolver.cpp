@@ -8,7 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "CellColours.h"
+#include "BlockColours.h"
 #include "PackedSlots.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/ChebyshevAcceleration.h"
@@ -28,7 +28,7 @@ double msSince(Clock::time_point t0) {
 
 PbfSolver::PbfSolver()
     : grid_(std::make_unique<NeighborGrid>()),
-      colours_(std::make_unique<CellColours>()),
+      colours_(std::make_unique<BlockColours>()),
       chebyshev_(std::make_unique<ChebyshevAcceleration>()),
       lattice_(std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius())),
       packed_(std::make_unique<PackedSlots>()) {}

@@ -259,7 +259,7 @@ TEST(SolverPhysics, WarmStartedAndAcceleratedResultsIdenticalForOneAndTwoThreads
   expectIdenticalForOneAndTwoThreadsAndAcrossRuns(scene);
 }
 
-// The Gauss-Seidel sweeps (27 colours of cells, CellColours.h), lists rebuilt within solves.
+// The Gauss-Seidel sweeps (27 colours of cells, BlockColours.h), lists rebuilt within solves.
 TEST(SolverPhysics, GaussSeidelResultsIdenticalForOneAndTwoThreads) {
   pbf::Scene scene = determinismScene();
   scene.solver.density_tolerance = 0.001f;

@@ -27,7 +27,7 @@ class LatticeBoundary;
 class NeighborGrid;
 class SolidBoundaries;
 class ChebyshevAcceleration;
-class CellColours;
+class BlockColours;
 class PackedSlots;
 
 class PbfSolver {
@@ -216,7 +216,7 @@ class PbfSolver {
   std::vector<float> reorder_float_scratch_;
 
   std::unique_ptr<NeighborGrid> grid_;
-  std::unique_ptr<CellColours> colours_;  // of the grid's last build (Gauss-Seidel order)
+  std::unique_ptr<BlockColours> colours_;  // of the grid's last build (Gauss-Seidel order)
   bool colours_valid_ = false;
   std::vector<float> sweep_residual_;     // each constraint's compression when projected
   std::unique_ptr<ChebyshevAcceleration> chebyshev_;  // of the constraint iterations

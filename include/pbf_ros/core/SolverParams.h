@@ -69,7 +69,7 @@ struct SolverParams {
   // positions the ones before it left (as PBD projects its constraints; GaussSeidelSweep.cpp),
   // instead of all at once from the same positions (Jacobi). A pressure then crosses the
   // fluid in fewer iterations: 2-2.7x fewer for the same tolerance (README "Performance").
-  // The order is fixed by the grid (27 colours of cells, CellColours.h), so results are the
+  // The order is fixed by the grid (8 colours of blocks of cells, BlockColours.h), so results are the
   // same for any thread count. An iteration is one sweep, after which a density pass checks
   // the tolerance (the step then reuses that density). The default since session 21 (README
   // "Performance"). It replaces the Jacobi solve, so it does not combine with warm_start,
