@@ -54,7 +54,7 @@ std::string SolverParams::validate() const {
         << ")";
   if (err.tellp() == 0 && (min_iterations < 0 || max_iterations < minIterations() ||
                            max_iterations > 1000))
-    err << "iterations must satisfy min_iterations <= max_iterations <= 1000 (got "
+    err << "iterations must satisfy 0 <= min_iterations <= max_iterations <= 1000 (got "
         << min_iterations << ", " << max_iterations << "; min_iterations 0 means "
         << minIterations() << " for the " << (gauss_seidel ? "Gauss-Seidel" : "Jacobi")
         << " solve: set it too for fewer)";

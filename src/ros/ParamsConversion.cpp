@@ -143,9 +143,11 @@ std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& 
       notes.push_back(jacobi_names + "turned off, since gauss_seidel replaces the Jacobi solve they act on");
     }
   }
-  // min_iterations 0 is the solve's own floor (SolverParams::minIterations).
-  const int least_iterations =
-      config.min_iterations > 0 ? config.min_iterations : (config.gauss_seidel ? 1 : 2);
+  // min_iterations 0 is the solve's own floor: SolverParams says which.
+  pbf::SolverParams solve;
+  solve.min_iterations = config.min_iterations;
+  solve.gauss_seidel = config.gauss_seidel;
+  const int least_iterations = solve.minIterations();
   if (least_iterations > config.max_iterations) {
     notes.push_back("max_iterations: " + std::to_string(config.max_iterations) +
                     " is below min_iterations; raised to " + std::to_string(least_iterations));

@@ -221,8 +221,9 @@ TEST(Calibration, ColumnsAlongTheWallsAreHeldLikeTheMiddle) {
       const auto x = solver->positions();
       const auto v = solver->velocities();
       for (std::size_t i = 0; i < x.size(); ++i) {
-        (alongAWall(x[i]) ? wall_v2 : middle_v2) += v[i].squaredNorm();
-        ++(alongAWall(x[i]) ? wall_n : middle_n);
+        const bool wall = alongAWall(x[i]);
+        (wall ? wall_v2 : middle_v2) += v[i].squaredNorm();
+        ++(wall ? wall_n : middle_n);
       }
     }
     const double wall_rms = std::sqrt(wall_v2 / wall_n), middle_rms = std::sqrt(middle_v2 / middle_n);
