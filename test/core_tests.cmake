@@ -8,7 +8,8 @@ foreach(t ${PBF_CORE_TESTS})
   target_link_libraries(test_core_${t} pbf_core gtest_main)
   target_compile_definitions(test_core_${t} PRIVATE PBF_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 endforeach()
-# The candidate filter's and the neighbour sums' two builds are private to pbf_core; their
-# tests compare them.
+# The candidate filter's and the neighbour sums' two builds, and the Gauss-Seidel order's
+# blocks, are private to pbf_core; their tests reach them.
 target_include_directories(test_core_neighbor_grid PRIVATE src/core)
 target_include_directories(test_core_neighbor_sums PRIVATE src/core)
+target_include_directories(test_core_gauss_seidel PRIVATE src/core)

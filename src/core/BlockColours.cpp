@@ -1,5 +1,7 @@
 #include "BlockColours.h"
 
+#include <algorithm>
+
 #include "pbf_ros/core/NeighborGrid.h"
 
 namespace pbf {
@@ -33,6 +35,28 @@ void BlockColours::build(const NeighborGrid& grid) {
   std::array<std::uint32_t, kColours> next{};
   for (int c = 0; c < kColours; ++c) next[c] = start_[c];
   for (std::size_t q = 0; q < by_grid_order_.size(); ++q) blocks_[next[colour_[q]]++] = by_grid_order_[q];
+  before_.resize(blocks_.size());
+  for (int c = 0; c < kColours; ++c) {
+    std::uint32_t sum = 0;
+    for (std::uint32_t q = start_[c]; q < start_[c + 1]; ++q) {
+      before_[q] = sum;
+      sum += blocks_[q].end - blocks_[q].begin;
+    }
+  }
+}
+
+std::pair<std::size_t, std::size_t> BlockColours::share(int colour, int thread, int threads) const {
+  const std::uint32_t first = start_[colour], last = start_[colour + 1];
+  if (first == last) return {0, 0};
+  const std::uint64_t total = std::uint64_t{before_[last - 1]} + (blocks_[last - 1].end - blocks_[last - 1].begin);
+  // The first block of the colour whose particles before it reach the share's start.
+  auto boundary = [&](int t) -> std::size_t {
+    const std::uint64_t target = total * static_cast<std::uint64_t>(t) / static_cast<std::uint64_t>(threads);
+    const auto it = std::lower_bound(before_.begin() + first, before_.begin() + last, target,
+                                     [](std::uint32_t b, std::uint64_t v) { return b < v; });
+    return static_cast<std::size_t>(it - (before_.begin() + first));
+  };
+  return {boundary(thread), thread + 1 == threads ? last - first : boundary(thread + 1)};
 }
 
 }  // namespace pbf

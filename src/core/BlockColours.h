@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace pbf {
@@ -39,10 +40,19 @@ class BlockColours {
   const Block* first(int colour) const { return blocks_.data() + start_[colour]; }
   std::size_t count(int colour) const { return start_[colour + 1] - start_[colour]; }
 
+  // Thread t's share of colour c's blocks when `threads` project them: the run
+  // [begin, end) of indices into first(c) whose particles are about a 1/threads part of
+  // the colour's particles. Shares by block count left one thread with 14 % more particles
+  // than the other in the flowing dam break (blocks hold 1 to ~64), and the other waited
+  // at every colour's barrier. A run, not scattered blocks: each thread stays in one part
+  // of the fluid (GaussSeidelSweep.cpp).
+  std::pair<std::size_t, std::size_t> share(int colour, int thread, int threads) const;
+
  private:
   std::vector<Block> by_grid_order_;  // scratch: the occupied blocks as the grid sorted them
   std::vector<std::uint8_t> colour_;  // of each of those
   std::vector<Block> blocks_;          // by colour
+  std::vector<std::uint32_t> before_;  // per entry of blocks_: its colour's particles before it
   std::array<std::uint32_t, kColours + 1> start_{};
 };
 

@@ -151,17 +151,20 @@ float PbfSolver::gaussSeidelSweep() {
                            boundaries(),
                            images};
 #pragma omp parallel
-  for (int colour = 0; colour < BlockColours::kColours; ++colour) {
-    const BlockColours::Block* blocks = colours_->first(colour);
-    const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(colours_->count(colour));
-    // Each thread takes one contiguous run of the colour's blocks (Morton order: one region
-    // of the fluid), so that the threads move particles in different parts of memory:
-    // handed out a few cells at a time, they shared cache lines of neighbours' positions,
-    // and two threads swept slower than one. The barrier at the end of each colour is
-    // what keeps the colours apart.
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t q = 0; q < count; ++q)
-      for (std::uint32_t i = blocks[q].begin; i < blocks[q].end; ++i) projectDensityConstraint(i, sweep);
+  {
+    const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
+    for (int colour = 0; colour < BlockColours::kColours; ++colour) {
+      const BlockColours::Block* blocks = colours_->first(colour);
+      // Each thread takes one contiguous run of the colour's blocks (Morton order: one
+      // region of the fluid) holding its share of the particles, so that the threads move
+      // particles in different parts of memory: handed out a few cells at a time, they
+      // shared cache lines of neighbours' positions, and two threads swept slower than one.
+      // The barrier at the end of each colour is what keeps the colours apart.
+      const auto [begin, end] = colours_->share(colour, thread, threads);
+      for (std::size_t q = begin; q < end; ++q)
+        for (std::uint32_t i = blocks[q].begin; i < blocks[q].end; ++i) projectDensityConstraint(i, sweep);
+#pragma omp barrier
+    }
   }
   if (slots == nullptr) {
     projectOntoSolids();

@@ -9,10 +9,13 @@
 #include <cstdio>
 #include <stdexcept>
 #include <limits>
+#include <random>
 #include <string>
 
+#include "BlockColours.h"
 #include "SolverTestUtil.h"
 #include "pbf_ros/core/Metrics.h"
+#include "pbf_ros/core/NeighborGrid.h"
 
 namespace {
 
@@ -120,4 +123,45 @@ TEST(GaussSeidel, RefusesWhatItDoesNotCombineWithAndKeepsThePreviousParameters) 
     p.gauss_seidel_omega = omega;
     EXPECT_TRUE(refused(p, "gauss_seidel_omega")) << omega;
   }
+}
+
+// Each thread's share of a colour's blocks (BlockColours::share): the shares are consecutive
+// runs that cover the colour once, and each holds its part of the particles to within one
+// block, on a cloud as uneven as a dam break's (a dense slab and a thin spray).
+TEST(GaussSeidel, ThreadsShareEachColoursParticlesEvenlyInConsecutiveRuns) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i < 20000; ++i) points.emplace_back(0.3f * u(rng), 0.2f * u(rng), 0.2f * u(rng));
+  for (int i = 0; i < 2000; ++i) points.emplace_back(0.3f + 0.7f * u(rng), 0.2f * u(rng), 0.2f * u(rng));
+  pbf::NeighborGrid grid;
+  grid.build(points, 0.04f, Eigen::AlignedBox3f());
+  pbf::BlockColours colours;
+  colours.build(grid);
+  std::size_t covered = 0;
+  for (int colour = 0; colour < pbf::BlockColours::kColours; ++colour) {
+    const pbf::BlockColours::Block* blocks = colours.first(colour);
+    const std::size_t count = colours.count(colour);
+    std::size_t total = 0, largest = 0;
+    for (std::size_t q = 0; q < count; ++q) {
+      total += blocks[q].end - blocks[q].begin;
+      largest = std::max<std::size_t>(largest, blocks[q].end - blocks[q].begin);
+    }
+    covered += total;
+    for (int threads : {1, 2, 3, 8}) {
+      std::size_t next = 0;
+      for (int t = 0; t < threads; ++t) {
+        const auto [begin, end] = colours.share(colour, t, threads);
+        EXPECT_EQ(begin, next) << "colour " << colour << ", thread " << t << " of " << threads;
+        ASSERT_LE(begin, end);
+        std::size_t held = 0;
+        for (std::size_t q = begin; q < end; ++q) held += blocks[q].end - blocks[q].begin;
+        EXPECT_NEAR(static_cast<double>(held), static_cast<double>(total) / threads, largest + 1.0)
+            << "colour " << colour << ", thread " << t << " of " << threads;
+        next = end;
+      }
+      EXPECT_EQ(next, count) << "colour " << colour << ", " << threads << " threads";
+    }
+  }
+  EXPECT_EQ(covered, points.size());
 }

@@ -259,7 +259,8 @@ TEST(SolverPhysics, WarmStartedAndAcceleratedResultsIdenticalForOneAndTwoThreads
   expectIdenticalForOneAndTwoThreadsAndAcrossRuns(scene);
 }
 
-// The Gauss-Seidel sweeps (27 colours of cells, BlockColours.h), lists rebuilt within solves.
+// The Gauss-Seidel sweeps (blocks of cells in 8 colours, each shared among the threads by
+// its particles: BlockColours.h), lists rebuilt within solves.
 TEST(SolverPhysics, GaussSeidelResultsIdenticalForOneAndTwoThreads) {
   pbf::Scene scene = determinismScene();
   scene.solver.density_tolerance = 0.001f;
