@@ -187,8 +187,15 @@ void applySolverOverrides(std::vector<StressCase>& cases, const std::string& yam
     c.make = [make = c.make, yaml]() {
       auto solver = make();
       pbf::SolverParams p = solver->params();
-      pbf::applySolverYaml(yaml, "--set", p);
-      solver->setParams(p);
+      // The keys and values passed on the defaults (above), so what fails here is their
+      // combination with this case's own settings (the loader checks it, then the solver).
+      try {
+        pbf::applySolverYaml(yaml, "--set", p);
+        solver->setParams(p);
+      } catch (const std::exception& e) {
+        throw OverrideConflict(std::string("skipped: the --set overrides conflict with this case's own settings: ") +
+                               e.what());
+      }
       return solver;
     };
 }
@@ -197,7 +204,15 @@ StressResult runStressCase(const StressCase& c, Progress* progress) {
   StressResult r;
   r.name = c.name;
   const auto t0 = std::chrono::steady_clock::now();
-  auto solver = c.make();
+  std::unique_ptr<pbf::PbfSolver> solver;
+  try {
+    solver = c.make();
+  } catch (const OverrideConflict& e) {
+    r.skipped = true;
+    r.completed = false;
+    r.first_failure = e.what();
+    return r;
+  }
   pbf::FloatingBodies bodies = c.bodies ? c.bodies() : pbf::FloatingBodies();
   while (solver->time() < c.settle - 1e-9)
     if (solver->step().failed) break;  // the run below reports it
