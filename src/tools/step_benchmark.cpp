@@ -126,43 +126,40 @@ void BM_DamBreakStep(benchmark::State& state) {
   omp_set_num_threads(omp_get_num_procs());
 }
 
+// What every registration of BM_DamBreakStep shares: its argument names, and wall-clock
+// milliseconds over at least a second per repetition.
+void timedDamBreak(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->MinTime(1.0);
+}
+
 }  // namespace
 
 // Scaling with particle count and threads (default boundaries).
 BENCHMARK(BM_DamBreakStep)
-    ->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
     ->ArgsProduct({{20, 80, 320}, {1, 2}, {kWallDensity}, {0}})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->MinTime(1.0);
+    ->Apply(timedDamBreak);
 
 // Cost of boundary handling: clamp only (0), wall density (1), plus obstacles (2).
 BENCHMARK(BM_DamBreakStep)
     ->Name("BM_BoundaryCost")
-    ->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
     ->ArgsProduct({{20}, {2}, {kClampOnly, kWallDensity, kWallDensityAndObstacles}, {0}})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->MinTime(1.0);
+    ->Apply(timedDamBreak);
 
 // 30 robot links beside the tank, far from the fluid (3) against none (1), one thread:
 //   pbf_step_benchmark --benchmark_filter=BM_FarRobotLinks --benchmark_repetitions=5
 BENCHMARK(BM_DamBreakStep)
     ->Name("BM_FarRobotLinks")
-    ->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
     ->ArgsProduct({{20}, {1}, {kWallDensity, kFarRobot}, {0}})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->MinTime(1.0);
+    ->Apply(timedDamBreak);
 
 // One Gauss-Seidel sweep against one Jacobi iteration (4 of each per step), 20k particles:
 //   pbf_step_benchmark --benchmark_filter=BM_GaussSeidelCost --benchmark_repetitions=5
 BENCHMARK(BM_DamBreakStep)
     ->Name("BM_GaussSeidelCost")
-    ->ArgNames({"kparticles", "threads", "boundary", "gauss_seidel"})
     ->ArgsProduct({{20}, {1, 2}, {kWallDensity}, {0, 1}})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->MinTime(1.0);
+    ->Apply(timedDamBreak);
 
 BENCHMARK_MAIN();
