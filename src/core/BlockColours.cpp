@@ -6,12 +6,24 @@
 
 namespace pbf {
 
-void BlockColours::build(const NeighborGrid& grid) {
+std::array<std::uint8_t, 8> BlockColours::octantsTopFirst(float gx, float gy, float gz) {
+  std::array<std::uint8_t, 8> octants;
+  for (int o = 0; o < 8; ++o) octants[o] = static_cast<std::uint8_t>(7 - o);
+  // Height of an octant's offset along -gravity; ties in descending octant. Not
+  // std::stable_sort: it allocates a buffer, and a warm step allocates nothing.
+  auto height = [&](std::uint8_t o) { return -(gx * (o & 1) + gy * ((o >> 1) & 1) + gz * ((o >> 2) & 1)); };
+  std::sort(octants.begin(), octants.end(), [&](std::uint8_t a, std::uint8_t b) {
+    return height(a) != height(b) ? height(a) > height(b) : a > b;
+  });
+  return octants;
+}
+
+void BlockColours::build(const NeighborGrid& grid, const std::vector<Eigen::Vector3f>& points,
+                         const Eigen::Vector3f& gravity) {
   const std::vector<std::uint32_t>& cell = grid.pointCells();
   const std::uint32_t nx = static_cast<std::uint32_t>(grid.dims().x());
   const std::uint32_t ny = static_cast<std::uint32_t>(grid.dims().y());
   by_grid_order_.clear();
-  colour_.clear();
   const std::uint32_t n = static_cast<std::uint32_t>(cell.size());
   for (std::uint32_t k = 0; k < n;) {
     std::uint32_t end = k + 1;
@@ -23,33 +35,75 @@ void BlockColours::build(const NeighborGrid& grid) {
       return other % nx / 2 == bx && (other / nx) % ny / 2 == by && other / (nx * ny) / 2 == bz;
     };
     while (end < n && (cell[end] == cell[end - 1] || sameBlock(cell[end]))) ++end;
-    by_grid_order_.push_back({k, end});
-    colour_.push_back(static_cast<std::uint8_t>((bx & 1) + 2 * (by & 1) + 4 * (bz & 1)));
+    by_grid_order_.push_back({static_cast<std::uint8_t>((bx & 1) + 2 * (by & 1) + 4 * (bz & 1)), {k, end}});
     k = end;
   }
+
+  // Each block's points in projection order: its cells by octant, top first, and a cell's
+  // points (two layers of a lattice) highest first; ties by index, so the order is fixed.
+  const std::array<std::uint8_t, 8> octants = octantsTopFirst(gravity.x(), gravity.y(), gravity.z());
+  std::array<std::uint8_t, 8> rank{};
+  for (int r = 0; r < 8; ++r) rank[octants[r]] = static_cast<std::uint8_t>(r);
+  order_.resize(n);
+  const std::ptrdiff_t blocks = static_cast<std::ptrdiff_t>(by_grid_order_.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t q = 0; q < blocks; ++q) {
+    const Block b = by_grid_order_[q].block;
+    // The block's cells are runs of its points (at most 8): their octants, ranked.
+    struct Run {
+      std::uint32_t rank, begin, end;
+    };
+    std::array<Run, 8> runs;
+    int run_count = 0;
+    for (std::uint32_t p = b.begin; p < b.end;) {
+      const std::uint32_t c = cell[p];
+      std::uint32_t e = p + 1;
+      while (e < b.end && cell[e] == c) ++e;
+      runs[run_count++] = {rank[(c % nx & 1) + 2 * ((c / nx) % ny & 1) + 4 * (c / (nx * ny) & 1)], p, e};
+      p = e;
+    }
+    std::sort(runs.begin(), runs.begin() + run_count, [](const Run& x, const Run& y) { return x.rank < y.rank; });
+    auto higher = [&](std::uint32_t a, std::uint32_t c) {
+      const float ha = -gravity.dot(points[a]), hc = -gravity.dot(points[c]);
+      return ha != hc ? ha > hc : a > c;
+    };
+    std::uint32_t filled = b.begin;
+    for (int r = 0; r < run_count; ++r) {
+      const std::uint32_t first = filled;
+      for (std::uint32_t p = runs[r].begin; p < runs[r].end; ++p) {  // insertion sort
+        std::uint32_t f = filled++;
+        order_[f] = p;
+        for (; f > first && higher(order_[f], order_[f - 1]); --f) std::swap(order_[f], order_[f - 1]);
+      }
+    }
+  }
+
   // Counting sort by colour (stable: each colour keeps the grid's order).
-  start_.fill(0);
-  for (const std::uint8_t c : colour_) ++start_[c + 1];
-  for (int c = 0; c < kColours; ++c) start_[c + 1] += start_[c];
+  std::array<std::size_t, kColours + 1> colour_start{};
+  for (const Ranked& r : by_grid_order_) ++colour_start[r.colour + 1];
+  for (int c = 0; c < kColours; ++c) colour_start[c + 1] += colour_start[c];
   blocks_.resize(by_grid_order_.size());
-  std::array<std::uint32_t, kColours> next{};
-  for (int c = 0; c < kColours; ++c) next[c] = start_[c];
-  for (std::size_t q = 0; q < by_grid_order_.size(); ++q) blocks_[next[colour_[q]]++] = by_grid_order_[q];
-  before_.resize(blocks_.size());
+  before_.resize(by_grid_order_.size());
+  std::array<std::size_t, kColours> next_slot;
+  for (int c = 0; c < kColours; ++c) next_slot[c] = colour_start[c];
+  for (const Ranked& r : by_grid_order_) blocks_[next_slot[r.colour]++] = r.block;
+  phase_start_.assign(1, 0);
   for (int c = 0; c < kColours; ++c) {
+    if (colour_start[c + 1] == colour_start[c]) continue;
     std::uint32_t sum = 0;
-    for (std::uint32_t q = start_[c]; q < start_[c + 1]; ++q) {
+    for (std::size_t q = colour_start[c]; q < colour_start[c + 1]; ++q) {
       before_[q] = sum;
       sum += blocks_[q].end - blocks_[q].begin;
     }
+    phase_start_.push_back(colour_start[c + 1]);
   }
 }
 
-std::pair<std::size_t, std::size_t> BlockColours::share(int colour, int thread, int threads) const {
-  const std::uint32_t first = start_[colour], last = start_[colour + 1];
+std::pair<std::size_t, std::size_t> BlockColours::share(std::size_t phase, int thread, int threads) const {
+  const std::size_t first = phase_start_[phase], last = phase_start_[phase + 1];
   if (first == last) return {0, 0};
   const std::uint64_t total = std::uint64_t{before_[last - 1]} + (blocks_[last - 1].end - blocks_[last - 1].begin);
-  // The first block of the colour whose particles before it reach the share's start.
+  // The first block of the phase whose particles before it reach the share's start.
   auto boundary = [&](int t) -> std::size_t {
     const std::uint64_t target = total * static_cast<std::uint64_t>(t) / static_cast<std::uint64_t>(threads);
     const auto it = std::lower_bound(before_.begin() + first, before_.begin() + last, target,

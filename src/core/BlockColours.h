@@ -1,20 +1,30 @@
 #pragma once
-// The occupied blocks of 2 x 2 x 2 cells of a NeighborGrid in 8 colours (the block's
-// coordinates modulo 2 on each axis), so that a Gauss-Seidel sweep can run in parallel and
-// still give the same result for any thread count (GaussSeidelSweep.cpp).
+// The order of a parallel Gauss-Seidel sweep (GaussSeidelSweep.cpp): the occupied blocks of
+// 2 x 2 x 2 cells of a NeighborGrid in phases, each phase's blocks independent of one
+// another, so that a sweep can run in parallel and still give the same result for any
+// thread count.
 //
-// Why 8 colours make the blocks of one colour independent: two blocks of a colour are at
-// least one block (two cells, >= 2 search radii) apart, so no particle is within the search
-// radius of a particle in each, at the positions the lists were built from. A constraint
-// reads and moves only its own particle and that particle's list: two constraints of one
-// colour in different blocks touch disjoint particles, however far the solve has moved them
-// since (the lists are index sets). Each block's particles are taken one after another by
-// one thread, in memory order (its cells are contiguous in the grid's Morton order); so the
-// order of every projection is fixed by the grid alone. Each colour ends at a barrier: 8 per
-// sweep, where colouring single cells takes 27 (modulo 3); and a block's particles are
-// projected in a longer run (the tank needed 9 % fewer sweeps than with single cells).
+// Why blocks of one colour (the block's coordinates modulo 2 on each axis) are independent:
+// two of them are at least one block (two cells, >= 2 search radii) apart, so no particle is
+// within the search radius of a particle in each, at the positions the lists were built
+// from. A constraint reads and moves only its own particle and that particle's list: two
+// constraints of one colour in different blocks touch disjoint particles, however far the
+// solve has moved them since (the lists are index sets). Each block's particles are taken
+// one after another by one thread; so the order of every projection is fixed by the grid
+// and gravity alone. Each phase ends at a barrier.
+//
+// Top first, along gravity. Gauss-Seidel leaves the least residual where it projects last,
+// and a column's load travels down: a layer projected before the layers above it is pushed
+// back into compression by them. So the blocks go in layers across gravity, the highest
+// layer first, each layer's blocks in its colours (a phase: one layer, one colour), and
+// within a block its cells top first. In the grid's Morton order (colour by colour over the
+// whole fluid, a block's bottom cells first) a resting tank ended with its floor, edges and
+// corners at 2.5-4x the average error over rho0, and how much depended on where the floor
+// fell in a block (README "Validation" section 2, "Top first").
 // Points clamped into the grid's border cells (NeighborGrid::build) lie beyond them, which
 // only moves them farther from the other blocks of their colour.
+
+#include <Eigen/Core>
 
 #include <array>
 #include <cstdint>
@@ -29,31 +39,46 @@ class BlockColours {
  public:
   static constexpr int kColours = 8;
   struct Block {
-    std::uint32_t begin, end;  // the block's sorted points
+    std::uint32_t begin, end;  // the block's entries of order(): its points, top cell first
   };
 
-  // From the grid's last build: every occupied block, grouped by colour, each colour's
-  // blocks in the grid's (Morton) order. O(points).
-  void build(const NeighborGrid& grid);
+  // The order of a block's 8 cells (octant x&1 + 2 (y&1) + 4 (z&1)) when projected: the
+  // highest along -gravity first; ties (a level floor's cells, or no gravity) in descending
+  // octant, so that gravity along -z gives the Morton order reversed.
+  static std::array<std::uint8_t, 8> octantsTopFirst(float gx, float gy, float gz);
 
-  // The blocks of colour c: [first(c), first(c) + count(c)).
-  const Block* first(int colour) const { return blocks_.data() + start_[colour]; }
-  std::size_t count(int colour) const { return start_[colour + 1] - start_[colour]; }
+  // From the grid's last build, its points (in the grid's sorted order) and gravity: every
+  // occupied block in the phase of its colour, each phase's blocks in the grid's (Morton)
+  // order, each block's cells top first, each cell's points highest first. O(points).
+  void build(const NeighborGrid& grid, const std::vector<Eigen::Vector3f>& points,
+             const Eigen::Vector3f& gravity);
 
-  // Thread t's share of colour c's blocks when `threads` project them: the run
-  // [begin, end) of indices into first(c) whose particles are about a 1/threads part of
-  // the colour's particles. Shares by block count left one thread with 14 % more particles
+  std::size_t phases() const { return phase_start_.size() - 1; }
+  // The blocks of phase p: [first(p), first(p) + count(p)).
+  const Block* first(std::size_t phase) const { return blocks_.data() + phase_start_[phase]; }
+  std::size_t count(std::size_t phase) const { return phase_start_[phase + 1] - phase_start_[phase]; }
+
+  // The sorted points in projection order: a block's points are order()[begin .. end).
+  const std::uint32_t* order() const { return order_.data(); }
+
+  // Thread t's share of phase p's blocks when `threads` project them: the run
+  // [begin, end) of indices into first(p) whose particles are about a 1/threads part of
+  // the phase's particles. Shares by block count left one thread with 14 % more particles
   // than the other in the flowing dam break (blocks hold 1 to ~64), and the other waited
-  // at every colour's barrier. A run, not scattered blocks: each thread stays in one part
-  // of the fluid (GaussSeidelSweep.cpp).
-  std::pair<std::size_t, std::size_t> share(int colour, int thread, int threads) const;
+  // at every barrier. A run, not scattered blocks: each thread stays in one part of the
+  // fluid (GaussSeidelSweep.cpp).
+  std::pair<std::size_t, std::size_t> share(std::size_t phase, int thread, int threads) const;
 
  private:
-  std::vector<Block> by_grid_order_;  // scratch: the occupied blocks as the grid sorted them
-  std::vector<std::uint8_t> colour_;  // of each of those
-  std::vector<Block> blocks_;          // by colour
-  std::vector<std::uint32_t> before_;  // per entry of blocks_: its colour's particles before it
-  std::array<std::uint32_t, kColours + 1> start_{};
+  struct Ranked {
+    std::uint8_t colour;
+    Block block;
+  };
+  std::vector<Ranked> by_grid_order_;   // scratch: the occupied blocks as the grid sorted them
+  std::vector<Block> blocks_;           // by phase
+  std::vector<std::uint32_t> before_;   // per entry of blocks_: its phase's particles before it
+  std::vector<std::size_t> phase_start_{0};
+  std::vector<std::uint32_t> order_;    // every sorted point, each block's cells top first
 };
 
 }  // namespace pbf

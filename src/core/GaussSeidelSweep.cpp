@@ -31,9 +31,10 @@
 // after the sweep, as after a Jacobi correction. The sums are NeighborSums' (AVX2 where the
 // CPU has it), the moves are scattered one neighbour at a time.
 //
-// Order and threads: the blocks of cells of one colour (BlockColours.h) share no particle,
-// so each colour's blocks are projected in parallel, a block by one thread, and the result
-// does not depend on the thread count.
+// Order and threads: the blocks of cells of one phase (BlockColours.h: one layer across
+// gravity, one colour) share no particle, so each phase's blocks are projected in parallel,
+// a block by one thread, and the result does not depend on the thread count. The layers go
+// top first, and so do a block's cells.
 
 namespace pbf {
 
@@ -119,7 +120,7 @@ float PbfSolver::gaussSeidelSweep() {
   if (!colours_valid_) {
     if (grid_->pointCells().size() != n)
       throw std::logic_error("PbfSolver: neighbour lists do not match the particles");
-    colours_->build(*grid_);
+    colours_->build(*grid_, predicted_, params_.gravity);
     colours_valid_ = true;
   }
   const Kernels k(params_.supportRadius());
@@ -153,16 +154,17 @@ float PbfSolver::gaussSeidelSweep() {
 #pragma omp parallel
   {
     const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
-    for (int colour = 0; colour < BlockColours::kColours; ++colour) {
-      const BlockColours::Block* blocks = colours_->first(colour);
-      // Each thread takes one contiguous run of the colour's blocks (Morton order: one
+    const std::uint32_t* const order = colours_->order();
+    for (std::size_t phase = 0; phase < colours_->phases(); ++phase) {
+      const BlockColours::Block* blocks = colours_->first(phase);
+      // Each thread takes one contiguous run of the phase's blocks (Morton order: one
       // region of the fluid) holding its share of the particles, so that the threads move
       // particles in different parts of memory: handed out a few cells at a time, they
       // shared cache lines of neighbours' positions, and two threads swept slower than one.
-      // The barrier at the end of each colour is what keeps the colours apart.
-      const auto [begin, end] = colours_->share(colour, thread, threads);
+      // The barrier at the end of each phase is what keeps the phases apart.
+      const auto [begin, end] = colours_->share(phase, thread, threads);
       for (std::size_t q = begin; q < end; ++q)
-        for (std::uint32_t i = blocks[q].begin; i < blocks[q].end; ++i) projectDensityConstraint(i, sweep);
+        for (std::uint32_t e = blocks[q].begin; e < blocks[q].end; ++e) projectDensityConstraint(order[e], sweep);
 #pragma omp barrier
     }
   }

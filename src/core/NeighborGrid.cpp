@@ -52,7 +52,8 @@ void NeighborGrid::rankCellsInMortonOrder() {
 
 const std::vector<std::uint32_t>& NeighborGrid::build(const std::vector<Eigen::Vector3f>& points,
                                                       float cell_size,
-                                                      const Eigen::AlignedBox3f& domain) {
+                                                      const Eigen::AlignedBox3f& domain,
+                                                      const GridAnchor& anchor) {
   if (!(cell_size > 0.0f)) throw std::invalid_argument("NeighborGrid: cell_size must be > 0");
   const std::size_t n = points.size();
   Eigen::AlignedBox3f box = domain;
@@ -79,6 +80,12 @@ const std::vector<std::uint32_t>& NeighborGrid::build(const std::vector<Eigen::V
     dims = ((hi - lo) / cs).array().round().cast<int>().max(1);
     if (dims.cast<double>().prod() <= max_cells && (hi - lo).allFinite()) break;
     cs *= 2.0f;
+  }
+  if (anchor.axis >= 0 && anchor.axis < 3) {
+    // Shifted by less than a block of 8 cells: the grid still covers the box, and its
+    // dimensions (and the cached Morton ranks) stay as they are.
+    const int a = anchor.axis;
+    lo[a] += anchor.at_max ? box.max()[a] - hi[a] : box.min()[a] - lo[a];
   }
   origin_ = lo;
   if (dims != dims_ || rank_.empty()) {

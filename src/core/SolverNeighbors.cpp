@@ -13,6 +13,19 @@
 
 namespace pbf {
 
+namespace {
+
+// The fluid's bottom along gravity starts the grid's cells (GridAnchor) when
+// gravity is along an axis (within ~8 degrees); a tilted gravity has no such layer.
+GridAnchor gravityAnchor(const Eigen::Vector3f& g) {
+  int axis = 0;
+  g.cwiseAbs().maxCoeff(&axis);
+  if (!(std::abs(g[axis]) > 0.99f * g.norm())) return {};
+  return {axis, g[axis] > 0.0f};
+}
+
+}  // namespace
+
 void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
   const std::size_t n = order.size();
   // Gather into reused scratch arrays and swap: no allocation on the per-step path.
@@ -66,7 +79,7 @@ void PbfSolver::rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points)
     walls.extend(walls.min() - Eigen::Vector3f::Constant(radius)).extend(walls.max() + Eigen::Vector3f::Constant(radius));
     domain = domain.intersection(walls);
   }
-  reorder(grid_->build(points, radius, domain));
+  reorder(grid_->build(points, radius, domain, gravityAnchor(params_.gravity)));
   grid_->findNeighbors(points, radius);  // `points` is one of the arrays reorder() permuted
   if (params_.neighbor_skin > 0.0f) build_position_ = points;
   lists_valid_ = true;

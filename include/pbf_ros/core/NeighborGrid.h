@@ -14,6 +14,17 @@
 
 namespace pbf {
 
+// Where a NeighborGrid's cells start on one axis: by default the origin snaps to multiples
+// of 8 cells; with an anchor, a cell starts exactly at the domain's bound on `axis` (its
+// lower bound, or its upper one when `at_max`), so that the layer of points at that bound
+// lies in the first cell of a block of 2 x 2 x 2 cells. The Gauss-Seidel order projects a
+// block's cells top first (BlockColours.h): anchored at the fluid's bottom, its bottom
+// layer is projected after the layers above it.
+struct GridAnchor {
+  int axis = -1;  // 0, 1, 2; -1: none
+  bool at_max = false;
+};
+
 class NeighborGrid {
  public:
   // Sorts `points` into cells of size `cell_size` covering `domain` (points outside it go
@@ -22,7 +33,8 @@ class NeighborGrid {
   // Returns order: sorted slot k holds the point that was at index order[k].
   const std::vector<std::uint32_t>& build(const std::vector<Eigen::Vector3f>& points,
                                           float cell_size,
-                                          const Eigen::AlignedBox3f& domain = {});
+                                          const Eigen::AlignedBox3f& domain = {},
+                                          const GridAnchor& anchor = {});
 
   // CSR lists for the points of the last build, given in sorted order: neighbours of i
   // are indices()[offsets()[i] .. offsets()[i+1]), excluding i, every j with
