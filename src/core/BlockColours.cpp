@@ -67,14 +67,13 @@ void BlockColours::build(const NeighborGrid& grid, const std::vector<Eigen::Vect
       const float ha = -gravity.dot(points[a]), hc = -gravity.dot(points[c]);
       return ha != hc ? ha > hc : a > c;
     };
+    // std::sort, not an insertion sort: a cell holds ~8 points, but a degenerate cloud (every
+    // particle at one point, a stress case) puts them all in one.
     std::uint32_t filled = b.begin;
     for (int r = 0; r < run_count; ++r) {
       const std::uint32_t first = filled;
-      for (std::uint32_t p = runs[r].begin; p < runs[r].end; ++p) {  // insertion sort
-        std::uint32_t f = filled++;
-        order_[f] = p;
-        for (; f > first && higher(order_[f], order_[f - 1]); --f) std::swap(order_[f], order_[f - 1]);
-      }
+      for (std::uint32_t p = runs[r].begin; p < runs[r].end; ++p) order_[filled++] = p;
+      std::sort(order_.begin() + first, order_.begin() + filled, higher);
     }
   }
 
