@@ -1,26 +1,28 @@
 #pragma once
 // The order of a parallel Gauss-Seidel sweep (GaussSeidelSweep.cpp): the occupied blocks of
-// 2 x 2 x 2 cells of a NeighborGrid in phases, each phase's blocks independent of one
+// 2 x 2 x 2 cells of a NeighborGrid in phases, one per colour that has blocks (the block's
+// coordinates modulo 2 on each axis: at most 8), each phase's blocks independent of one
 // another, so that a sweep can run in parallel and still give the same result for any
 // thread count.
 //
-// Why blocks of one colour (the block's coordinates modulo 2 on each axis) are independent:
-// two of them are at least one block (two cells, >= 2 search radii) apart, so no particle is
-// within the search radius of a particle in each, at the positions the lists were built
-// from. A constraint reads and moves only its own particle and that particle's list: two
-// constraints of one colour in different blocks touch disjoint particles, however far the
-// solve has moved them since (the lists are index sets). Each block's particles are taken
-// one after another by one thread; so the order of every projection is fixed by the grid
-// and gravity alone. Each phase ends at a barrier.
+// Why blocks of one colour are independent: two of them are at least one block (two cells,
+// >= 2 search radii) apart, so no particle is within the search radius of a particle in
+// each, at the positions the lists were built from. A constraint reads and moves only its
+// own particle and that particle's list: two constraints of one colour in different blocks
+// touch disjoint particles, however far the solve has moved them since (the lists are index
+// sets). Each block's particles are taken one after another by one thread; so the order of
+// every projection is fixed by the grid and gravity alone. Each phase ends at a barrier.
 //
 // Top first, along gravity. Gauss-Seidel leaves the least residual where it projects last,
 // and a column's load travels down: a layer projected before the layers above it is pushed
-// back into compression by them. So the blocks go in layers across gravity, the highest
-// layer first, each layer's blocks in its colours (a phase: one layer, one colour), and
-// within a block its cells top first. In the grid's Morton order (colour by colour over the
-// whole fluid, a block's bottom cells first) a resting tank ended with its floor, edges and
-// corners at 2.5-4x the average error over rho0, and how much depended on where the floor
-// fell in a block (README "Validation" section 2, "Top first").
+// back into compression by them. So within a block the cells go top first, and within a
+// cell the points highest first (a cell holds two layers of a lattice); the grid anchors
+// its cells at the fluid's bottom (GridAnchor), so that the floor's layer is the last one
+// of its block. The phases keep the grid's Morton order, colour by colour over the whole
+// fluid. In that order with a block's bottom cells first (session 22), a resting tank ended
+// with its floor, edges and corners at 2.5-4x the average error over rho0; whole layers of
+// blocks taken top first were as even, but their extra barriers cost 20 % (README
+// "Validation" section 2, "Top first").
 // Points clamped into the grid's border cells (NeighborGrid::build) lie beyond them, which
 // only moves them farther from the other blocks of their colour.
 

@@ -31,10 +31,10 @@
 // after the sweep, as after a Jacobi correction. The sums are NeighborSums' (AVX2 where the
 // CPU has it), the moves are scattered one neighbour at a time.
 //
-// Order and threads: the blocks of cells of one phase (BlockColours.h: one layer across
-// gravity, one colour) share no particle, so each phase's blocks are projected in parallel,
-// a block by one thread, and the result does not depend on the thread count. The layers go
-// top first, and so do a block's cells.
+// Order and threads: the blocks of cells of one phase (BlockColours.h: one colour) share no
+// particle, so each phase's blocks are projected in parallel, a block by one thread, and the
+// result does not depend on the thread count. A block's cells go top first along gravity,
+// and a cell's particles highest first.
 
 namespace pbf {
 
