@@ -6,6 +6,24 @@
 
 namespace pbf {
 
+namespace {
+
+// A cell's (or a block's) coordinates from the grid's dense index x + nx (y + ny z).
+struct DenseCells {
+  std::uint32_t nx, ny;
+  std::array<std::uint32_t, 3> coords(std::uint32_t dense) const {
+    return {dense % nx, (dense / nx) % ny, dense / (nx * ny)};
+  }
+};
+
+// Which of the 8 parities (x&1 + 2 (y&1) + 4 (z&1)) coordinates have: a cell's octant in
+// its block, or a block's colour.
+std::uint8_t parity(const std::array<std::uint32_t, 3>& c) {
+  return static_cast<std::uint8_t>((c[0] & 1) + 2 * (c[1] & 1) + 4 * (c[2] & 1));
+}
+
+}  // namespace
+
 std::array<std::uint8_t, 8> BlockColours::octantsTopFirst(float gx, float gy, float gz) {
   std::array<std::uint8_t, 8> octants;
   for (int o = 0; o < 8; ++o) octants[o] = static_cast<std::uint8_t>(7 - o);
@@ -21,21 +39,21 @@ std::array<std::uint8_t, 8> BlockColours::octantsTopFirst(float gx, float gy, fl
 void BlockColours::build(const NeighborGrid& grid, const std::vector<Eigen::Vector3f>& points,
                          const Eigen::Vector3f& gravity) {
   const std::vector<std::uint32_t>& cell = grid.pointCells();
-  const std::uint32_t nx = static_cast<std::uint32_t>(grid.dims().x());
-  const std::uint32_t ny = static_cast<std::uint32_t>(grid.dims().y());
+  const DenseCells cells{static_cast<std::uint32_t>(grid.dims().x()), static_cast<std::uint32_t>(grid.dims().y())};
+  auto blockOf = [&](std::uint32_t dense) {
+    std::array<std::uint32_t, 3> c = cells.coords(dense);
+    for (std::uint32_t& v : c) v /= 2;
+    return c;
+  };
   by_grid_order_.clear();
   const std::uint32_t n = static_cast<std::uint32_t>(cell.size());
   for (std::uint32_t k = 0; k < n;) {
     std::uint32_t end = k + 1;
-    const std::uint32_t dense = cell[k];
-    const std::uint32_t bx = dense % nx / 2, by = (dense / nx) % ny / 2, bz = dense / (nx * ny) / 2;
+    const std::array<std::uint32_t, 3> block = blockOf(cell[k]);
     // The block's cells are contiguous in the grid's Morton order (a Morton code over 2 is
     // the code of the coordinates over 2): extend the run to the block's last point.
-    auto sameBlock = [&](std::uint32_t other) {
-      return other % nx / 2 == bx && (other / nx) % ny / 2 == by && other / (nx * ny) / 2 == bz;
-    };
-    while (end < n && (cell[end] == cell[end - 1] || sameBlock(cell[end]))) ++end;
-    by_grid_order_.push_back({static_cast<std::uint8_t>((bx & 1) + 2 * (by & 1) + 4 * (bz & 1)), {k, end}});
+    while (end < n && (cell[end] == cell[end - 1] || blockOf(cell[end]) == block)) ++end;
+    by_grid_order_.push_back({parity(block), {k, end}});
     k = end;
   }
 
@@ -59,7 +77,7 @@ void BlockColours::build(const NeighborGrid& grid, const std::vector<Eigen::Vect
       const std::uint32_t c = cell[p];
       std::uint32_t e = p + 1;
       while (e < b.end && cell[e] == c) ++e;
-      runs[run_count++] = {rank[(c % nx & 1) + 2 * ((c / nx) % ny & 1) + 4 * (c / (nx * ny) & 1)], p, e};
+      runs[run_count++] = {rank[parity(cells.coords(c))], p, e};
       p = e;
     }
     std::sort(runs.begin(), runs.begin() + run_count, [](const Run& x, const Run& y) { return x.rank < y.rank; });
