@@ -12,7 +12,9 @@
 //             dx_j and the delta-p sums only lambda_j.
 // It first checks that the three compute the same sums (against a scalar sum in double), then
 // times them. On a 20k-particle cubic lattice (40 x 25 x 20, jittered by 2 % of d, no walls), medians of
-// 7 runs of 50 after 20 warm-up runs, three rounds. Build and run from the repository root:
+// 7 runs of 50 after 20 warm-up runs, three rounds. (Since session 25 the shipped sums take
+// particle i's row of the per-pair arrays, pg + off[i], not the whole array.) Build and run
+// from the repository root:
 //   g++ -O2 -std=c++17 -march=x86-64-v3 -mtune-ctrl=use_gather -fno-trapping-math -fopenmp \
 //       -Isrc/core -Iinclude doc/experiments/frozen_correction_bench.cpp -o /tmp/frozen_correction_bench
 //   /tmp/frozen_correction_bench 1; /tmp/frozen_correction_bench 2     # threads
@@ -128,7 +130,7 @@ int main(int argc, char** argv) {
   auto shipped = [&]() {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const LambdaSums s = wideLambdaSums(arr, k, i, pg.data() + 0);
+      const LambdaSums s = wideLambdaSums(arr, k, i, pg.data() + off[i]);
       const float rho = s.rho + self_density;  // the sums leave the particle itself out
       const float C = std::max(rho / 1000 - 1.0f, 0.0f);
       const float l = -C / (s.sum_grad2 + s.gx * s.gx + s.gy * s.gy + s.gz * s.gz + 1e-3f);
@@ -136,7 +138,7 @@ int main(int argc, char** argv) {
     }
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const VectorSum v = wideDeltaSums(arr2, i, lam.data(), pg.data());
+      const VectorSum v = wideDeltaSums(arr2, i, lam.data(), pg.data() + off[i]);
       outx[3 * i] = v.x; outx[3 * i + 1] = v.y; outx[3 * i + 2] = v.z;
     }
   };
@@ -148,7 +150,7 @@ int main(int argc, char** argv) {
     }
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const VectorSum v = wideDeltaSums(arr2, i, lam.data(), pg.data());
+      const VectorSum v = wideDeltaSums(arr2, i, lam.data(), pg.data() + off[i]);
       s3[4 * i] = v.x; s3[4 * i + 1] = v.y; s3[4 * i + 2] = v.z;
     }
   };
@@ -199,7 +201,7 @@ int main(int argc, char** argv) {
     worst = std::max({worst, std::abs(a - ref), std::abs(b - ref)});
     scale = std::max(scale, std::abs(ref));
     // And the two delta-p loops (cached factor and fixed positions / stored gradient).
-    const VectorSum u = wideDeltaSums(arr2, i, lam.data(), pg.data());
+    const VectorSum u = wideDeltaSums(arr2, i, lam.data(), pg.data() + off[i]);
     const VectorSum v = wideDeltaStored(arr2, i, s2.data(), GX.data(), GY.data(), GZ.data());
     delta_worst = std::max({delta_worst, double(std::abs(u.x - v.x)), double(std::abs(u.y - v.y)),
                             double(std::abs(u.z - v.z))});

@@ -102,8 +102,10 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
     // images move with i, so their distance changes twice as fast.
     Reflection refl[ContainerMirror::kMaxReflections];
     const int reflections = images.reflections(predicted_[i], refl);
-    const LambdaSums s = reflections == 0 ? lambdaSums(arrays, pc, i, G)
-                                          : lambdaSumsWithImages(arrays, pc, i, refl, reflections, G, GI);
+    float* const row = G + off[i];  // i's entries of the per-pair arrays
+    float* const image_row = images.isOn() ? GI + off[i] : nullptr;
+    const LambdaSums s = reflections == 0 ? lambdaSums(arrays, pc, i, row)
+                                          : lambdaSumsWithImages(arrays, pc, i, refl, reflections, row, image_row);
     has_coincident_pair_[i] = s.coincident > 0;  // the delta-p pass sees the same positions
     neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(s.within, 65535));
     float rho = self_density + s.rho, gx = s.gx, gy = s.gy, gz = s.gz, sum_grad2 = s.sum_grad2;
@@ -287,8 +289,9 @@ void PbfSolver::correctPositions(LambdaPass pass) {
     const bool coincident = has_coincident_pair_[i];  // counted by the lambda pass
     if (!scorr.on) {
       neighbour_images_done = reflections == 1 && !coincident;
-      const VectorSum s = neighbour_images_done ? deltaSumsWithImage(arrays, i, refl[0], L, G, GI)
-                                                : deltaSums(arrays, i, L, G);
+      const VectorSum s = neighbour_images_done
+                              ? deltaSumsWithImage(arrays, i, refl[0], L, G + off[i], GI + off[i])
+                              : deltaSums(arrays, i, L, G + off[i]);
       dx_sum = s.x, dy_sum = s.y, dz_sum = s.z;
     } else {
       const float si = S[i];

@@ -63,8 +63,13 @@ struct PbfSolver::SweepContext {
   NeighborArrays arrays;
   float* position;
   std::size_t stride;
-  float* pair_gradient;   // per neighbour entry: g of grad_i W = g (x_i - x_j)
-  float* image_gradient;  // the same for the image pairs of a particle by one wall
+  // Per thread, two rows of row_length floats (NeighborSums.h): the projected particle's
+  // g of grad_i W = g (x_i - x_j) per neighbour, and the same for the image pairs by one
+  // wall. They live for one projection only, so each thread reuses its own: arrays the size
+  // of the lists were written and read back once per projection, and beyond the caches
+  // (hundreds of thousands of particles) that traffic cost more than the sums themselves.
+  float* rows;
+  std::size_t row_length;
   float self_density, inv_rho0, grad_scale, eps, omega, rest_density;
   bool unilateral, walls;
   SolidBoundaries solids;
@@ -127,8 +132,7 @@ float PbfSolver::gaussSeidelSweep() {
   const float mass = params_.densityMass();
   const float grad_scale = mass / params_.rest_density;
   const ContainerMirror images = containerMirror();
-  pair_gradient_.resize(grid_->indices().size());
-  image_gradient_.resize(images.isOn() ? grid_->indices().size() : 0);
+  const std::size_t row_length = gradientRowLength();
   sweep_residual_.resize(n);
   // Wrench tracking reads the x,y,z array (ContainerMirror::forEachImage): no slots then.
   float* const slots = track_wrenches_ ? nullptr : packed_->sweepPositions(predicted_);
@@ -139,8 +143,8 @@ float PbfSolver::gaussSeidelSweep() {
                            NeighborArrays{xyz, grid_->offsets().data(), grid_->indices().data(), slots},
                            slots != nullptr ? slots : xyz,
                            slots != nullptr ? std::size_t{4} : std::size_t{3},
-                           pair_gradient_.data(),
-                           image_gradient_.data(),
+                           gradient_rows_.data(),
+                           row_length,
                            mass * k.spiky(0.0f),
                            1.0f / params_.rest_density,
                            grad_scale,
@@ -155,6 +159,7 @@ float PbfSolver::gaussSeidelSweep() {
   {
     const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
     const std::uint32_t* const order = colours_->order();
+    float* const rows = sweep.rows + 2 * sweep.row_length * static_cast<std::size_t>(thread);
     for (std::size_t phase = 0; phase < colours_->phases(); ++phase) {
       const BlockColours::Block* blocks = colours_->first(phase);
       // Each thread takes one contiguous run of the phase's blocks (Morton order: one
@@ -164,7 +169,7 @@ float PbfSolver::gaussSeidelSweep() {
       // The barrier at the end of each phase is what keeps the phases apart.
       const auto [begin, end] = colours_->share(phase, thread, threads);
       for (std::size_t q = begin; q < end; ++q)
-        for (std::uint32_t e = blocks[q].begin; e < blocks[q].end; ++e) projectDensityConstraint(order[e], sweep);
+        for (std::uint32_t e = blocks[q].begin; e < blocks[q].end; ++e) projectDensityConstraint(order[e], sweep, rows);
 #pragma omp barrier
     }
   }
@@ -179,22 +184,37 @@ float PbfSolver::gaussSeidelSweep() {
       std::max<std::size_t>(n, 1));
 }
 
-void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& sweep) {
+// The longest neighbour list, rounded up so that the rows are rarely re-allocated as it
+// changes (a warm step allocates nothing); the rows for every thread sized for it.
+std::size_t PbfSolver::gradientRowLength() {
+  const std::uint32_t* off = grid_->offsets().data();
+  std::uint32_t longest = 0;
+#pragma omp parallel for reduction(max : longest) schedule(static)
+  for (std::size_t i = 0; i < size(); ++i) longest = std::max(longest, off[i + 1] - off[i]);
+  constexpr std::size_t kRound = 64;  // floats: whole cache lines, and room to grow
+  const std::size_t row_length = (std::size_t{longest} / kRound + 1) * kRound;
+  const std::size_t needed = 2 * row_length * static_cast<std::size_t>(omp_get_max_threads());
+  if (gradient_rows_.size() < needed) gradient_rows_.resize(needed);
+  return row_length;
+}
+
+void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& sweep, float* rows) {
   const Kernels& k = sweep.k;
   float* const W = sweep.position;
   const std::size_t S = sweep.stride;
   const Eigen::Vector3f x_i = sweep.at(i);
   const std::uint32_t* off = sweep.arrays.offset;
   const std::uint32_t* nbr = sweep.arrays.index;
-  const float* G = sweep.pair_gradient;
-  const float* GI = sweep.image_gradient;
+  const std::uint32_t* const list = nbr + off[i];  // i's neighbours: G[e] is list[e]'s factor
+  const std::uint32_t count = off[i + 1] - off[i];
+  float* const G = rows;
+  float* const GI = rows + sweep.row_length;
   Reflection refl[ContainerMirror::kMaxReflections];
   const int reflections = sweep.images.reflections(x_i, refl);
   const LambdaSums s =
       reflections == 0
-          ? lambdaSums(sweep.arrays, sweep.pc, i, sweep.pair_gradient)
-          : lambdaSumsWithImages(sweep.arrays, sweep.pc, i, refl, reflections, sweep.pair_gradient,
-                                 sweep.image_gradient);
+          ? lambdaSums(sweep.arrays, sweep.pc, i, G)
+          : lambdaSumsWithImages(sweep.arrays, sweep.pc, i, refl, reflections, G, GI);
   float rho = sweep.self_density + s.rho;
   Eigen::Vector3f grad_i(s.gx, s.gy, s.gz);
   float sum_grad2 = s.sum_grad2;
@@ -228,9 +248,9 @@ void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& swee
   if (s.coincident > 0) {
     grad_i.setZero();
     sum_grad2 = 0.0f;
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
+    for (std::uint32_t e = 0; e < count; ++e) {
       Eigen::Vector3f part;
-      sum_grad2 += exactPair(nbr[e], part).squaredNorm();
+      sum_grad2 += exactPair(list[e], part).squaredNorm();
       grad_i += part;
     }
   }
@@ -261,8 +281,8 @@ void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& swee
 
   // The neighbours first: their gradients are taken at i's position before it moves.
   if (exact) {
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      const std::uint32_t j = nbr[e];
+    for (std::uint32_t e = 0; e < count; ++e) {
+      const std::uint32_t j = list[e];
       Eigen::Vector3f unused;
       const Eigen::Vector3f move = -lambda * exactPair(j, unused);
       for (int c = 0; c < 3; ++c) W[S * j + c] += move[c];
@@ -271,23 +291,23 @@ void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& swee
     using Slot = Eigen::Map<Eigen::Vector4f, Eigen::Aligned16>;
     const Eigen::Vector4f xi(x_i.x(), x_i.y(), x_i.z(), 0.0f);
     if (reflections == 0) {
-      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-        Slot xj(W + 4 * std::size_t{nbr[e]});
+      for (std::uint32_t e = 0; e < count; ++e) {
+        Slot xj(W + 4 * std::size_t{list[e]});
         xj -= (lambda * G[e]) * (xi - xj);  // grad_j C_i = -G (x_i - x_j)
       }
     } else {  // one wall: grad_j C_i = -G (x_i - x_j) - GI (R x_i - x_j), R x_i i's image
       const Eigen::Vector3f r = imageOf(refl[0], x_i);
       const Eigen::Vector4f ri(r.x(), r.y(), r.z(), 0.0f);
-      for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-        Slot xj(W + 4 * std::size_t{nbr[e]});
+      for (std::uint32_t e = 0; e < count; ++e) {
+        Slot xj(W + 4 * std::size_t{list[e]});
         xj -= (lambda * G[e]) * (xi - xj) + (lambda * GI[e]) * (ri - xj);
       }
     }
   } else {
     const Eigen::Vector3f ri = reflections == 0 ? x_i : imageOf(refl[0], x_i);
     const float* image_factor = reflections == 0 ? nullptr : GI;
-    for (std::uint32_t e = off[i]; e < off[i + 1]; ++e) {
-      float* xj = W + 3 * std::size_t{nbr[e]};
+    for (std::uint32_t e = 0; e < count; ++e) {
+      float* xj = W + 3 * std::size_t{list[e]};
       const float f = lambda * G[e], fi = image_factor != nullptr ? lambda * image_factor[e] : 0.0f;
       for (int c = 0; c < 3; ++c) xj[c] -= f * (x_i[c] - xj[c]) + fi * (ri[c] - xj[c]);
     }

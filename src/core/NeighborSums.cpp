@@ -58,7 +58,7 @@ LambdaSums lambdaSums(const NeighborArrays& a, const PairConstants& k, std::size
     const float dl = std::max(h - rlen, 0.0f);
     rho += density * dl * dl * dl;
     const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
-    pair_gradient[e] = g;
+    pair_gradient[e - begin] = g;
     coincident += r2 <= tiny2 ? 1 : 0;
     within += r2 < h2 ? 1u : 0u;
     gx += g * dx;
@@ -84,7 +84,7 @@ VectorSum deltaSums(const NeighborArrays& a, std::size_t i, const float* lambda,
   for (std::size_t e = begin; e < end; ++e) {
     const int j = static_cast<int>(nbr[e]);
     const float dx = xi - P[3 * j], dy = yi - P[3 * j + 1], dz = zi - P[3 * j + 2];
-    const float g = (li + lambda[j]) * pair_gradient[e];
+    const float g = (li + lambda[j]) * pair_gradient[e - begin];
     sx += g * dx;
     sy += g * dy;
     sz += g * dz;
@@ -190,7 +190,7 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
     const float rlen = std::sqrt(r2);
     const float dl = std::max(h - rlen, 0.0f);
     const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
-    pair_gradient[e] = g;
+    pair_gradient[e - begin] = g;
     coincident += r2 <= tiny2 ? 1 : 0;
     within += r2 < h2 ? 1u : 0u;
     const float ex = o.dx(x, y, z), ey = o.dy(x, y, z), ez = o.dz(x, y, z);
@@ -198,7 +198,7 @@ static LambdaSums lambdaSumsWithImage(const NeighborArrays& a, const PairConstan
     const float slen = std::sqrt(s2);
     const float sl = std::max(h - slen, 0.0f);
     const float gi = s2 > tiny2 ? spiky * sl * sl / slen : 0.0f;
-    image_gradient[e] = gi;
+    image_gradient[e - begin] = gi;
     rho += density * (dl * dl * dl + sl * sl * sl);
     gx += g * dx + gi * ex;
     gy += g * dy + gi * ey;
@@ -224,7 +224,8 @@ LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k,
   float rho = 0.0f, gx = 0.0f, gy = 0.0f, gz = 0.0f, sum_grad2 = 0.0f;
   int coincident = 0;
   std::uint32_t within = 0;
-  for (std::size_t e = a.offset[i]; e < a.offset[i + 1]; ++e) {
+  const std::size_t begin = a.offset[i], end = a.offset[i + 1];
+  for (std::size_t e = begin; e < end; ++e) {
     const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
     const float dx = xi - x, dy = yi - y, dz = zi - z;
@@ -232,7 +233,7 @@ LambdaSums lambdaSumsWithImages(const NeighborArrays& a, const PairConstants& k,
     const float rlen = std::sqrt(r2);
     const float dl = std::max(h - rlen, 0.0f);
     const float g = r2 > tiny2 ? spiky * dl * dl / rlen : 0.0f;
-    pair_gradient[e] = g;
+    pair_gradient[e - begin] = g;
     coincident += r2 <= tiny2 ? 1 : 0;
     within += r2 < h2 ? 1u : 0u;
     rho += density * dl * dl * dl;
@@ -336,7 +337,7 @@ VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Refle
     const int j = static_cast<int>(nbr[e]);
     const float x = P[3 * j], y = P[3 * j + 1], z = P[3 * j + 2];
     const float lij = li + lambda[j];
-    const float g = lij * pair_gradient[e], gi = lij * image_gradient[e];
+    const float g = lij * pair_gradient[e - begin], gi = lij * image_gradient[e - begin];
     sx += g * (xi - x) + gi * o.dx(x, y, z);
     sy += g * (yi - y) + gi * o.dy(x, y, z);
     sz += g * (zi - z) + gi * o.dz(x, y, z);

@@ -36,9 +36,15 @@ struct PairConstants {
   float coincident2; // pairs with r^2 at or below this have no direction
 };
 
+// Per-pair values (pair_gradient, image_gradient below) are rows of particle i's list: the
+// value of its k-th neighbour, entry offset[i] + k of the list, is at row[k]. The Jacobi
+// passes keep one row per particle in an array laid out like the lists (row = array +
+// offset[i]), to use in the delta-p pass; the Gauss-Seidel sweep needs them only within one
+// projection and reuses one row per thread.
+
 // Density, constraint gradient sum and sum of squared gradients of particle i (the lambda
-// pass, eq 8-9). Writes each pair's gradient factor g (grad = g * r) to pair_gradient for
-// the delta-p pass. `coincident` counts pairs without a direction (left out of the sums),
+// pass, eq 8-9). Writes each pair's gradient factor g (grad = g * r) to pair_gradient (i's
+// row) for the delta-p pass. `coincident` counts pairs without a direction (left out of the sums),
 // `within` the neighbours closer than h (images not counted), as densitySums does.
 struct LambdaSums {
   float rho, gx, gy, gz, sum_grad2;

@@ -204,7 +204,7 @@ inline LambdaSums wideLambdaSums(const NeighborArrays& a, const PairConstants& k
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
     const Pairs p = directPairs(n, xi, yi, zi, wk);
-    book.add(n, p, wk, pair_gradient + e);
+    book.add(n, p, wk, pair_gradient + (e - begin));
     rho = _mm256_fmadd_ps(wk.density, p.cube(), rho);
     gx = _mm256_fmadd_ps(p.g, p.dx, gx);
     gy = _mm256_fmadd_ps(p.g, p.dy, gy);
@@ -222,7 +222,7 @@ inline VectorSum wideDeltaSums(const NeighborArrays& a, std::size_t i, const flo
   __m256 sx = _mm256_setzero_ps(), sy = sx, sz = sx;
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
-    const __m256 factor = n.load(pair_gradient + e);  // 0 in unused lanes
+    const __m256 factor = n.load(pair_gradient + (e - begin));  // 0 in unused lanes
     const __m256 g = _mm256_mul_ps(_mm256_add_ps(li, n.lambda(lambda)), factor);
     sx = _mm256_fmadd_ps(g, _mm256_sub_ps(xi, n.x), sx);
     sy = _mm256_fmadd_ps(g, _mm256_sub_ps(yi, n.y), sy);
@@ -314,9 +314,9 @@ inline LambdaSums wideLambdaSumsWithImage(const NeighborArrays& a, const PairCon
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
     const Pairs p = directPairs(n, xi, yi, zi, wk);
-    book.add(n, p, wk, pair_gradient + e);
+    book.add(n, p, wk, pair_gradient + (e - begin));
     const Pairs s = imagePairs(n, o, wk);
-    n.store(image_gradient + e, s.g);
+    n.store(image_gradient + (e - begin), s.g);
     rho = _mm256_fmadd_ps(wk.density, _mm256_add_ps(p.cube(), s.cube()), rho);
     gx = _mm256_fmadd_ps(s.g, s.dx, _mm256_fmadd_ps(p.g, p.dx, gx));
     gy = _mm256_fmadd_ps(s.g, s.dy, _mm256_fmadd_ps(p.g, p.dy, gy));
@@ -342,8 +342,8 @@ inline VectorSum wideDeltaSumsWithImage(const NeighborArrays& a, std::size_t i, 
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
     const __m256 lij = _mm256_add_ps(li, n.lambda(lambda));
-    const __m256 g = _mm256_mul_ps(lij, n.load(pair_gradient + e));
-    const __m256 gi = _mm256_mul_ps(lij, n.load(image_gradient + e));
+    const __m256 g = _mm256_mul_ps(lij, n.load(pair_gradient + (e - begin)));
+    const __m256 gi = _mm256_mul_ps(lij, n.load(image_gradient + (e - begin)));
     sx = _mm256_fmadd_ps(gi, o.dx(n.x, n.y, n.z), _mm256_fmadd_ps(g, _mm256_sub_ps(xi, n.x), sx));
     sy = _mm256_fmadd_ps(gi, o.dy(n.x, n.y, n.z), _mm256_fmadd_ps(g, _mm256_sub_ps(yi, n.y), sy));
     sz = _mm256_fmadd_ps(gi, o.dz(n.x, n.y, n.z), _mm256_fmadd_ps(g, _mm256_sub_ps(zi, n.z), sz));
@@ -368,7 +368,7 @@ inline LambdaSums wideLambdaSumsWithImages(const NeighborArrays& a, const PairCo
   for (std::size_t e = begin; e < end; e += kWidth) {
     const Group n(a, e, end);
     const Pairs p = directPairs(n, xi, yi, zi, wk);
-    book.add(n, p, wk, pair_gradient + e);
+    book.add(n, p, wk, pair_gradient + (e - begin));
     __m256 cubes = p.cube();
     __m256 vx = _mm256_mul_ps(p.g, p.dx), vy = _mm256_mul_ps(p.g, p.dy), vz = _mm256_mul_ps(p.g, p.dz);
     gx = _mm256_add_ps(gx, vx), gy = _mm256_add_ps(gy, vy), gz = _mm256_add_ps(gz, vz);

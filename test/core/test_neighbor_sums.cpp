@@ -177,10 +177,13 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
         for (bool mirror : {false, true}) {
           SCOPED_TRACE(mirror ? "with the floor's images" : "direct pairs");
           const ReferenceLambda ref(c, k, mirror);
+          // Laid out like the lists; the sums take particle 0's rows (NeighborSums.h).
           std::vector<float> g(c.index.size() + 8, -1.0f), gi(g.size(), -1.0f);
+          float* const row = g.data() + c.offset[0];
+          float* const image_row = gi.data() + c.offset[0];
           const pbf::Reflection r = floorMirror();
-          const pbf::LambdaSums s = mirror ? lambda_sums_images(a, k, 0, &r, 1, g.data(), gi.data())
-                                           : lambda_sums(a, k, 0, g.data());
+          const pbf::LambdaSums s = mirror ? lambda_sums_images(a, k, 0, &r, 1, row, image_row)
+                                           : lambda_sums(a, k, 0, row);
           expectNear(s.rho, ref.rho, rho_scale, "density", count);
           expectNear(s.gx, ref.grad.x, grad_scale, "gradient x", count);
           expectNear(s.gy, ref.grad.y, grad_scale, "gradient y", count);
@@ -216,8 +219,8 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
             dp.y += gg * dy + gm * dy;
             dp.z += gg * dz + gm * (c.position[2] + c.position[3 * j + 2]);
           }
-          const pbf::VectorSum d = mirror ? delta_sums_image(a, 0, r, c.lambda.data(), g.data(), gi.data())
-                                          : delta_sums(a, 0, c.lambda.data(), g.data());
+          const pbf::VectorSum d = mirror ? delta_sums_image(a, 0, r, c.lambda.data(), row, image_row)
+                                          : delta_sums(a, 0, c.lambda.data(), row);
           const double dp_scale = 2e-6 * k.spiky * kH * kH * 45;
           expectNear(d.x, dp.x, dp_scale, "delta p x", count);
           expectNear(d.y, dp.y, dp_scale, "delta p y", count);
@@ -349,7 +352,8 @@ TEST(NeighborSums, EdgesAndCornersAgreeWithTheEquations) {
             sum_grad2 += v.x * v.x + v.y * v.y + v.z * v.z;
           }
           std::vector<float> g(c.index.size() + 8, -1.0f), unused(g.size(), -1.0f);
-          const pbf::LambdaSums s = b.lambda_images(c.arrays(packed), k, 0, edge.data(), reflections, g.data(), unused.data());
+          const pbf::LambdaSums s = b.lambda_images(c.arrays(packed), k, 0, edge.data(), reflections,
+                                                    g.data() + c.offset[0], unused.data() + c.offset[0]);
           expectNear(s.rho, rho, rho_scale, "density", count);
           expectNear(s.gx, grad.x, grad_scale, "gradient x", count);
           expectNear(s.gy, grad.y, grad_scale, "gradient y", count);

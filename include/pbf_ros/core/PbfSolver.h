@@ -139,7 +139,9 @@ class PbfSolver {
   // One sweep; returns the average compression each constraint had when it was projected.
   float gaussSeidelSweep();
   struct SweepContext;
-  void projectDensityConstraint(std::size_t i, const SweepContext& sweep);
+  // rows: the calling thread's two gradient rows (SweepContext::rows).
+  void projectDensityConstraint(std::size_t i, const SweepContext& sweep, float* rows);
+  std::size_t gradientRowLength();
   void recordGaussSeidelBoundaryPush(std::size_t i, float lambda, const SweepContext& sweep);
   // Every prediction onto the solids (recording what they did while wrenches are tracked).
   void projectOntoSolids();
@@ -201,6 +203,7 @@ class PbfSolver {
   std::vector<float> scorr_scale_;          // per particle bound of the s_corr push
   std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass
   std::vector<float> image_gradient_;        // same for the image pairs by one wall
+  std::vector<float> gradient_rows_;         // the sweep's per-thread rows of the same
   std::vector<std::uint8_t> has_coincident_pair_;  // per particle, lambda -> delta p pass
   std::vector<Eigen::Vector3f> wall_gradient_;  // solids' part of grad C, lambda -> delta p
   std::vector<float> density_;
