@@ -264,12 +264,15 @@ def plot_scaling(folder, md):
     md.append("| particles | " + " | ".join(f"{t} thread(s)" for t in sorted(set(int(num(r, 'threads')) for r in rows))) + " |")
     threads = sorted(set(int(num(r, "threads")) for r in rows))
     md.append("|---|" + "---|" * len(threads))
-    slopes = {}
+    slopes, slopes_from_20k = {}, {}
     for t in threads:
         sel = [r for r in rows if int(num(r, "threads")) == t]
         x = [num(r, "particles") for r in sel]
         y = [num(r, "ms_per_step") for r in sel]
         slopes[t] = loglog_slope(x, y)
+        # Issue 10's range: from 20 000 particles up.
+        big = [(a, b) for r, a, b in zip(sel, x, y) if num(r, "target_particles") >= 20000]
+        slopes_from_20k[t] = loglog_slope([a for a, _ in big], [b for _, b in big]) if len(big) > 1 else float("nan")
         ax.plot(x, y, "o-", label=f"{t} thread(s): slope {slopes[t]:.2f}")
     for target in sorted(set(int(num(r, "target_particles")) for r in rows)):
         cells = []
@@ -279,7 +282,9 @@ def plot_scaling(folder, md):
         n = [num(r, "particles") for r in rows if int(num(r, "target_particles")) == target][0]
         md.append(f"| {int(n)} | " + " | ".join(cells) + " |")
     md.append("\nlog-log slope of ms/step against particles: " +
-              ", ".join(f"{t} thread(s) {s:.2f}" for t, s in slopes.items()) + "\n")
+              ", ".join(f"{t} thread(s) {s:.2f}" for t, s in slopes.items()) +
+              "; from 20 000 particles: " +
+              ", ".join(f"{t} thread(s) {s:.2f}" for t, s in slopes_from_20k.items()) + "\n")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("particles")

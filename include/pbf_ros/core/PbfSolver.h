@@ -141,6 +141,8 @@ class PbfSolver {
   struct SweepContext;
   // rows: the calling thread's two gradient rows (SweepContext::rows).
   void projectDensityConstraint(std::size_t i, const SweepContext& sweep, float* rows);
+  // The length of a sweep's gradient row (the longest neighbour list, rounded up), with
+  // gradient_rows_ sized for every thread.
   std::size_t gradientRowLength();
   void recordGaussSeidelBoundaryPush(std::size_t i, float lambda, const SweepContext& sweep);
   // Every prediction onto the solids (recording what they did while wrenches are tracked).
@@ -201,7 +203,7 @@ class PbfSolver {
   std::vector<float> complementarity_residual_;  // warm start: what is left to correct
   float lambda_sum_dt_ = 0.0f;               // dt of the step lambda_sum_ belongs to
   std::vector<float> scorr_scale_;          // per particle bound of the s_corr push
-  std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass
+  std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass (Jacobi)
   std::vector<float> image_gradient_;        // same for the image pairs by one wall
   std::vector<float> gradient_rows_;         // the sweep's per-thread rows of the same
   std::vector<std::uint8_t> has_coincident_pair_;  // per particle, lambda -> delta p pass

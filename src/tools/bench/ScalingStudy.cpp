@@ -78,7 +78,13 @@ void runScalingStudy(const BenchOptions& o) {
       std::printf("%10zu %8d %12.1f %12.1f %10.1f\n", solver->size(), t, m, median(nb), median(solve));
       std::fflush(stdout);
     }
-    std::printf("threads %d: log-log slope of ms/step against particles = %.3f\n", t, logLogSlope(ns, ms));
+    // Issue 10 asks for the slope from 20 000 particles up; the smallest size, where a step
+    // is a few milliseconds, is shown in the fit over all sizes only.
+    std::vector<double> ns20, ms20;
+    for (std::size_t k = 0; k < ns.size(); ++k)
+      if (counts[k] >= 20000) ns20.push_back(ns[k]), ms20.push_back(ms[k]);
+    std::printf("threads %d: log-log slope of ms/step against particles = %.3f (all sizes), %.3f (from 20000)\n",
+                t, logLogSlope(ns, ms), logLogSlope(ns20, ms20));
   }
   omp_set_num_threads(max_threads);
 }
