@@ -126,13 +126,17 @@ float PbfSolver::gaussSeidelSweep() {
     if (grid_->pointCells().size() != n)
       throw std::logic_error("PbfSolver: neighbour lists do not match the particles");
     colours_->build(*grid_, predicted_, params_.gravity);
+    gradient_row_length_ = gradientRowLength();  // the lists are new: so may be the longest
     colours_valid_ = true;
   }
+  // Every sweep: the thread count may change between steps without new lists.
+  const std::size_t rows_needed =
+      2 * gradient_row_length_ * static_cast<std::size_t>(omp_get_max_threads());
+  if (gradient_rows_.size() < rows_needed) gradient_rows_.resize(rows_needed);
   const Kernels k(params_.supportRadius());
   const float mass = params_.densityMass();
   const float grad_scale = mass / params_.rest_density;
   const ContainerMirror images = containerMirror();
-  const std::size_t row_length = gradientRowLength();
   sweep_residual_.resize(n);
   // Wrench tracking reads the x,y,z array (ContainerMirror::forEachImage): no slots then.
   float* const slots = track_wrenches_ ? nullptr : packed_->sweepPositions(predicted_);
@@ -144,7 +148,7 @@ float PbfSolver::gaussSeidelSweep() {
                            slots != nullptr ? slots : xyz,
                            slots != nullptr ? std::size_t{4} : std::size_t{3},
                            gradient_rows_.data(),
-                           row_length,
+                           gradient_row_length_,
                            mass * k.spiky(0.0f),
                            1.0f / params_.rest_density,
                            grad_scale,
@@ -185,17 +189,14 @@ float PbfSolver::gaussSeidelSweep() {
 }
 
 // The longest neighbour list, rounded up so that the rows are rarely re-allocated as it
-// changes (a warm step allocates nothing); the rows for every thread sized for it.
-std::size_t PbfSolver::gradientRowLength() {
+// changes (a warm step allocates nothing).
+std::size_t PbfSolver::gradientRowLength() const {
   const std::uint32_t* off = grid_->offsets().data();
   std::uint32_t longest = 0;
 #pragma omp parallel for reduction(max : longest) schedule(static)
   for (std::size_t i = 0; i < size(); ++i) longest = std::max(longest, off[i + 1] - off[i]);
   constexpr std::size_t kRound = 64;  // floats: whole cache lines, and room to grow
-  const std::size_t row_length = (std::size_t{longest} / kRound + 1) * kRound;
-  const std::size_t needed = 2 * row_length * static_cast<std::size_t>(omp_get_max_threads());
-  if (gradient_rows_.size() < needed) gradient_rows_.resize(needed);
-  return row_length;
+  return (std::size_t{longest} / kRound + 1) * kRound;
 }
 
 void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& sweep, float* rows) {

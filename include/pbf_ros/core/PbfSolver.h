@@ -141,9 +141,8 @@ class PbfSolver {
   struct SweepContext;
   // rows: the calling thread's two gradient rows (SweepContext::rows).
   void projectDensityConstraint(std::size_t i, const SweepContext& sweep, float* rows);
-  // The length of a sweep's gradient row (the longest neighbour list, rounded up), with
-  // gradient_rows_ sized for every thread.
-  std::size_t gradientRowLength();
+  // The length of a sweep's gradient row for the current lists (the longest, rounded up).
+  std::size_t gradientRowLength() const;
   void recordGaussSeidelBoundaryPush(std::size_t i, float lambda, const SweepContext& sweep);
   // Every prediction onto the solids (recording what they did while wrenches are tracked).
   void projectOntoSolids();
@@ -206,6 +205,7 @@ class PbfSolver {
   std::vector<float> pair_gradient_;         // per neighbour entry, lambda -> delta p pass (Jacobi)
   std::vector<float> image_gradient_;        // same for the image pairs by one wall
   std::vector<float> gradient_rows_;         // the sweep's per-thread rows of the same
+  std::size_t gradient_row_length_ = 0;      // of each row, set with the sweep's order
   std::vector<std::uint8_t> has_coincident_pair_;  // per particle, lambda -> delta p pass
   std::vector<Eigen::Vector3f> wall_gradient_;  // solids' part of grad C, lambda -> delta p
   std::vector<float> density_;
