@@ -347,6 +347,9 @@ VectorSum deltaSumsWithImage(const NeighborArrays& a, std::size_t i, const Refle
 
 DensitySum imageDensitySums(const NeighborArrays& a, const PairConstants& k, std::size_t i,
                             const Reflection& r) {
+#if PBF_WIDE_NEIGHBOR_SUMS
+  return wideImageDensitySums(a, k, i, r);
+#endif
   const float* P = a.position;
   const std::uint32_t* nbr = a.index;
   const std::size_t begin = a.offset[i], end = a.offset[i + 1];

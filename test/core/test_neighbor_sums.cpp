@@ -150,14 +150,16 @@ template <typename F>
 void forEachBuild(F f) {
   f(pbf::neighbor_sums_base::lambdaSums, pbf::neighbor_sums_base::deltaSums,
     pbf::neighbor_sums_base::densitySums, pbf::neighbor_sums_base::xsphSums,
-    pbf::neighbor_sums_base::lambdaSumsWithImages, pbf::neighbor_sums_base::deltaSumsWithImage, "portable");
+    pbf::neighbor_sums_base::lambdaSumsWithImages, pbf::neighbor_sums_base::deltaSumsWithImage,
+    pbf::neighbor_sums_base::imageDensitySums, "portable");
   if (!cpuHasAvx2()) {  // the portable loops are what this CPU runs
     std::cout << "no AVX2 on this CPU: the wide neighbour sums are not tested here\n";
     return;
   }
   f(pbf::neighbor_sums_v3::lambdaSums, pbf::neighbor_sums_v3::deltaSums,
     pbf::neighbor_sums_v3::densitySums, pbf::neighbor_sums_v3::xsphSums,
-    pbf::neighbor_sums_v3::lambdaSumsWithImages, pbf::neighbor_sums_v3::deltaSumsWithImage, "AVX2");
+    pbf::neighbor_sums_v3::lambdaSumsWithImages, pbf::neighbor_sums_v3::deltaSumsWithImage,
+    pbf::neighbor_sums_v3::imageDensitySums, "AVX2");
 }
 
 }  // namespace
@@ -166,7 +168,8 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
   const pbf::PairConstants k = constants();
   const double rho_scale = k.density * std::pow(kH, 3) * 45, grad_scale = k.spiky * kH * kH * 45;
   forEachBuild([&](auto lambda_sums, auto delta_sums, auto density_sums, auto xsph_sums,
-                   auto lambda_sums_images, auto delta_sums_image, const char* build) {
+                   auto lambda_sums_images, auto delta_sums_image, auto image_density_sums,
+                   const char* build) {
     SCOPED_TRACE(build);
     std::mt19937 rng(5);
     for (std::size_t count = 0; count <= 45; ++count) {
@@ -227,9 +230,9 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
           expectNear(d.z, dp.z, dp_scale, "delta p z", count);
         }
 
-        // Density and neighbour count; XSPH.
-        double rho = 0.0;
-        std::uint32_t within = 0;
+        // Density and neighbour count, directly and of the floor's images; XSPH.
+        double rho = 0.0, image_rho = 0.0;
+        std::uint32_t within = 0, images_within = 0;
         Vec xsph;
         for (std::uint32_t e = c.offset[0]; e < c.offset[1]; ++e) {
           const std::uint32_t j = c.index[e];
@@ -238,6 +241,10 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
           const double r2 = dx * dx + dy * dy + dz * dz, dl = std::max(kH - std::sqrt(r2), 0.0);
           rho += k.density * dl * dl * dl;
           within += r2 < static_cast<double>(k.h2) ? 1 : 0;
+          const double iz = c.position[2] + c.position[3 * j + 2];  // x_i - image of j
+          const double s2 = dx * dx + dy * dy + iz * iz, sl = std::max(kH - std::sqrt(s2), 0.0);
+          image_rho += k.density * sl * sl * sl;
+          images_within += s2 < static_cast<double>(k.h2) ? 1 : 0;
           const double w = std::max(static_cast<double>(k.h2) - r2, 0.0);
           const double f = k.poly6 * w * w * w / c.density[j];
           xsph.x += f * (c.velocity[3 * j] - c.velocity[0]);
@@ -247,6 +254,9 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
         const pbf::DensitySum ds = density_sums(a, k, 0);
         expectNear(ds.rho, rho, rho_scale, "density pass", count);
         EXPECT_EQ(ds.count, within) << count;
+        const pbf::DensitySum is = image_density_sums(a, k, 0, floorMirror());
+        expectNear(is.rho, image_rho, rho_scale, "density pass, images", count);
+        EXPECT_EQ(is.count, images_within) << count;
         const pbf::VectorSum xs = xsph_sums(a, k, 0, c.velocity.data(), c.density.data(),
                                             packed ? c.velocity_slots.data() : nullptr);
         const double xsph_scale = k.poly6 * std::pow(kH, 6) / 900.0 * 2.0 * 45;
@@ -263,7 +273,7 @@ TEST(NeighborSums, BothBuildsAgreeWithTheEquations) {
 TEST(NeighborSums, ANaNNeighbourMakesTheDensityNaN) {
   const pbf::PairConstants k = constants();
   forEachBuild([&](auto lambda_sums, auto, auto density_sums, auto, auto lambda_sums_images, auto,
-                   const char* build) {
+                   auto image_density_sums, const char* build) {
     SCOPED_TRACE(build);
     std::mt19937 rng(9);
     for (std::size_t count = 1; count <= 17; ++count) {
@@ -275,6 +285,7 @@ TEST(NeighborSums, ANaNNeighbourMakesTheDensityNaN) {
         EXPECT_TRUE(std::isnan(lambda_sums(c.arrays(packed), k, 0, g.data()).rho)) << count;
         EXPECT_TRUE(std::isnan(lambda_sums_images(c.arrays(packed), k, 0, &r, 1, g.data(), gi.data()).rho)) << count;
         EXPECT_TRUE(std::isnan(density_sums(c.arrays(packed), k, 0).rho)) << count;
+        EXPECT_TRUE(std::isnan(image_density_sums(c.arrays(packed), k, 0, r).rho)) << count;
       }
     }
   });
