@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
     double next_print = 0.0, step_ms = 0.0;
     int steps_since = 0, nan_retries = 0;
     long long total_iterations = 0;
+    long long total_density_checks = 0;
     while (solver.time() < seconds - 1e-9) {
       floating.prepare(solver);
       const pbf::StepStats st = solver.step();
@@ -93,6 +94,7 @@ int main(int argc, char** argv) {
       ++steps_since;
       nan_retries += st.nan_retries;
       total_iterations += st.iterations;
+      total_density_checks += st.density_checks;
       if (st.failed) {
         std::fprintf(stderr, "pbf_run: step failed even at the smallest dt\n");
         return 1;
@@ -129,9 +131,11 @@ int main(int argc, char** argv) {
                 "%d NaN retries\n",
                 solver.time(), wall, solver.time() / wall,
                 static_cast<unsigned long long>(solver.stepCount()), nan_retries);
-    std::printf("pbf_run: %.2f constraint iterations per step\n",
-                static_cast<double>(total_iterations) /
-                    static_cast<double>(std::max<std::uint64_t>(solver.stepCount(), 1)));
+    const double steps = static_cast<double>(std::max<std::uint64_t>(solver.stepCount(), 1));
+    std::printf("pbf_run: %.2f constraint iterations per step\n", static_cast<double>(total_iterations) / steps);
+    if (scene.solver.gauss_seidel && scene.solver.density_tolerance > 0.0f)
+      std::printf("pbf_run: %.2f density measurements per step (the sweeps' stop test)\n",
+                  static_cast<double>(total_density_checks) / steps);
     if (!scene.emitters.empty() || !scene.drains.empty())
       std::printf("pbf_run: %zu particles = %zu at start + %llu emitted - %llu drained\n", solver.size(),
                   sources.initialParticles(), static_cast<unsigned long long>(sources.emitted()),
