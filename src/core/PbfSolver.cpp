@@ -44,11 +44,6 @@ void PbfSolver::setParams(const SolverParams& params) {
   const bool constraint_scale_changed = radius_changed ||
                                         params.densityMass() != params_.densityMass() ||
                                         params.rest_density != params_.rest_density;
-  // Another tolerance needs other sweep counts: measure from the first sweep again.
-  if (params.density_tolerance != params_.density_tolerance) {
-    previous_sweeps_ = 0;
-    check_backoff_ = 1;
-  }
   params_ = params;
   if (radius_changed) lists_valid_ = false;
   if (constraint_scale_changed) lambda_sum_dt_ = 0.0f;
@@ -108,8 +103,6 @@ void PbfSolver::setParticles(const std::vector<Eigen::Vector3f>& positions,
   lambda_.assign(n, 0.0f);
   lambda_sum_.assign(n, 0.0f);
   lambda_sum_dt_ = 0.0f;  // no pressure yet to start from
-  previous_sweeps_ = 0;   // nor a sweep count
-  check_backoff_ = 1;
   density_.assign(n, params_.rest_density);
   neighbor_count_.assign(n, 0);
   lists_valid_ = false;

@@ -206,8 +206,6 @@ class PbfSolver {
   std::vector<float> image_gradient_;        // same for the image pairs by one wall
   std::vector<float> gradient_rows_;         // the sweep's per-thread rows of the same
   std::size_t gradient_row_length_ = 0;      // of each row, set with the sweep's order
-  int previous_sweeps_ = 0;                  // the last solve's sweeps and how far before
-  int check_backoff_ = 1;                    //   them the next starts measuring
   std::vector<std::uint8_t> has_coincident_pair_;  // per particle, lambda -> delta p pass
   std::vector<Eigen::Vector3f> wall_gradient_;  // solids' part of grad C, lambda -> delta p
   std::vector<float> density_;

@@ -51,6 +51,8 @@ struct StepStats {
   double dt = 0.0;                       // time step actually taken [s]
   int iterations = 0;                    // constraint iterations used (a warm start is one)
   int density_checks = 0;                // density passes of the Gauss-Seidel stop test
+  double final_sweep_residual = 0.0;     // mean compression each constraint had when the last
+                                         // measured sweep reached it (Gauss-Seidel)
   bool iteration_cap_reached = false;    // stopped at max_iterations above density_tolerance
   bool warm_started = false;             // the solve began from the previous step's pressure
   double avg_density_error = 0.0;        // mean of max(rho/rho0 - 1, 0) after the step
