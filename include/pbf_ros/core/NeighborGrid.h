@@ -70,6 +70,7 @@ class NeighborGrid {
   std::vector<std::uint32_t> order_;
   std::vector<std::uint32_t> offsets_, indices_;
   std::vector<std::uint32_t> unsorted_cell_;  // scratch
+  std::vector<float> soa_x_, soa_y_, soa_z_;   // findNeighbors()' points, one array per axis
   // Per-thread buffers of findNeighbors, kept between calls: no allocation per step.
   struct ThreadScratch {
     std::vector<std::uint32_t> list;       // the thread's block of neighbour lists
