@@ -91,6 +91,7 @@ void BlockColours::build(const NeighborGrid& grid, const std::vector<Eigen::Vect
       float height;
       std::uint32_t point;
     };
+    auto keyOf = [&](std::uint32_t p) { return Keyed{-gravity.dot(points[p]), p}; };
     auto higher = [](const Keyed& a, const Keyed& c) {
       return a.height != c.height ? a.height > c.height : a.point > c.point;
     };
@@ -104,14 +105,11 @@ void BlockColours::build(const NeighborGrid& grid, const std::vector<Eigen::Vect
         const std::uint32_t first = filled;
         for (std::uint32_t p = runs[r].begin; p < runs[r].end; ++p) order_[filled++] = p;
         std::sort(order_.begin() + first, order_.begin() + filled, [&](std::uint32_t a, std::uint32_t c) {
-          return higher({-gravity.dot(points[a]), a}, {-gravity.dot(points[c]), c});
+          return higher(keyOf(a), keyOf(c));
         });
         continue;
       }
-      for (std::uint32_t q = 0; q < size; ++q) {
-        const std::uint32_t p = runs[r].begin + q;
-        keys[q] = {-gravity.dot(points[p]), p};
-      }
+      for (std::uint32_t q = 0; q < size; ++q) keys[q] = keyOf(runs[r].begin + q);
       std::sort(keys.begin(), keys.begin() + size, higher);
       for (std::uint32_t q = 0; q < size; ++q) order_[filled++] = keys[q].point;
     }

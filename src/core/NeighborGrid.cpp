@@ -218,7 +218,7 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
         std::copy(sx + b, sx + b + len, px + c);
         std::copy(sy + b, sy + b + len, py + c);
         std::copy(sz + b, sz + b + len, pz + c);
-        for (std::uint32_t q = 0; q < len; ++q) ci[c + q] = b + q;
+        std::iota(ci + c, ci + c + len, b);
         c += len;
       }
       constexpr float kFar = std::numeric_limits<float>::infinity();
