@@ -7,6 +7,7 @@
 
 #include "ContainerMirror.h"
 #include "DeterministicSum.h"
+#include "FreeSurfaceLend.h"
 #include "NeighborSums.h"
 #include "PackedSlots.h"
 #include "PairGeometry.h"
@@ -95,6 +96,9 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   // A warm-started or accelerated solve may take back what it pushed (kReleaseRelaxation).
   const bool projected = params_.projectedSolve();
   if (projected) complementarity_residual_.resize(n);
+  float* const lend = surface_lend_table_ ? surface_lend_.data() : nullptr;
+  const FreeSurfaceLend* const lend_table = surface_lend_table_.get();
+  const bool update_lend = !surface_lend_set_;
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -124,14 +128,16 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       }
       gx = gi.x(), gy = gi.y(), gz = gi.z();
     }
+    Eigen::Vector3f own_images = Eigen::Vector3f::Zero();  // counted once: the lend's gradient
     for (int q = 0; q < reflections; ++q) {
       const Eigen::Vector3f r = ContainerMirror::imageOffset(refl[q], P, i, i);
       const float rlen = r.norm();
       if (rlen >= k.h) continue;
       rho += mass * k.spiky(rlen);
       if (rlen <= 0.0f) continue;
-      const Eigen::Vector3f g = 2.0f * grad_scale * k.spikyGradient(r, rlen);
-      gx += g.x(), gy += g.y(), gz += g.z();
+      const Eigen::Vector3f g = grad_scale * k.spikyGradient(r, rlen);
+      own_images += g;
+      gx += 2.0f * g.x(), gy += 2.0f * g.y(), gz += 2.0f * g.z();
     }
     if (walls) {  // obstacles do not move with the solve: they add to grad_i C only
       float fraction = 0.0f;
@@ -141,6 +147,13 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
         gx += gw.x(), gy += gw.y(), gz += gw.z();
       }
       wall_gradient_[i] = gw;  // the delta-p pass sees the same position
+    }
+    if (lend != nullptr) {  // the free surface's (FreeSurfaceLend.h), lowered by the first pass
+      if (update_lend) {
+        const Eigen::Vector3f one_sided = Eigen::Vector3f(gx, gy, gz) - own_images;
+        lend[i] = shrunkLend(lend[i], params_.rest_density * lend_table->fraction(one_sided.norm()));
+      }
+      rho += lend[i];
     }
     density_[i] = rho;
     float li = lambda_sum_[i];  // the warm start (<= 0), which lambda_sum_ holds
@@ -166,6 +179,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       slot[0] = P[3 * i], slot[1] = P[3 * i + 1], slot[2] = P[3 * i + 2], slot[3] = li;
     }
   }
+  if (lend != nullptr) surface_lend_set_ = true;
   if (projected && pass == LambdaPass::kNewton) {
     avg_error = static_cast<float>(
         deterministicSum(n, [&](std::size_t i) {

@@ -9,6 +9,7 @@
 #include "BlockColours.h"
 #include "ContainerMirror.h"
 #include "DeterministicSum.h"
+#include "FreeSurfaceLend.h"
 #include "PackedSlots.h"
 #include "NeighborSums.h"
 #include "PairGeometry.h"
@@ -74,6 +75,11 @@ struct PbfSolver::SweepContext {
   bool unilateral, walls;
   SolidBoundaries solids;
   ContainerMirror images;
+  // The free surface's lend (FreeSurfaceLend.h; null when off), lowered from each particle's
+  // one-sided gradient by the step's first sweep (update) and added to its density.
+  float* lend;
+  const FreeSurfaceLend* lend_table;
+  bool update_lend;
 
   Eigen::Vector3f at(std::size_t j) const {
     const float* p = position + stride * j;
@@ -179,7 +185,10 @@ float PbfSolver::gaussSeidelSweep() {
                            params_.unilateral_constraint,
                            params_.wall_density,
                            boundaries(),
-                           images};
+                           images,
+                           surface_lend_table_ ? surface_lend_.data() : nullptr,
+                           surface_lend_table_.get(),
+                           !surface_lend_set_};
 #pragma omp parallel
   {
     const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
@@ -198,6 +207,7 @@ float PbfSolver::gaussSeidelSweep() {
 #pragma omp barrier
     }
   }
+  if (surface_lend_table_) surface_lend_set_ = true;
   if (slots == nullptr) {
     projectOntoSolids();
   } else {  // back from the slots, onto the solids (wrenches are not tracked here)
@@ -277,12 +287,16 @@ void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& swee
     }
   }
   // i's own images move with i (twice as fast as i: see ConstraintPasses.cpp).
+  Eigen::Vector3f own_images = Eigen::Vector3f::Zero();  // counted once: the lend's gradient
   for (int q = 0; q < reflections; ++q) {
     const Eigen::Vector3f r = x_i - imageOf(refl[q], x_i);
     const float rlen = r.norm();
     if (rlen >= k.h) continue;
     rho += sweep.pc.density * (k.h - rlen) * (k.h - rlen) * (k.h - rlen);
-    if (rlen > 0.0f) grad_i += 2.0f * sweep.grad_scale * k.spikyGradient(r, rlen);
+    if (rlen <= 0.0f) continue;
+    const Eigen::Vector3f g = sweep.grad_scale * k.spikyGradient(r, rlen);
+    grad_i += 2.0f * g;
+    own_images += g;
   }
   if (sweep.walls) {  // the solids' density: they do not move, they add to grad_i C_i only
     float fraction = 0.0f;
@@ -291,6 +305,12 @@ void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& swee
       rho += sweep.rest_density * fraction;
       grad_i += gw;
     }
+  }
+  if (sweep.lend != nullptr) {
+    if (sweep.update_lend)
+      sweep.lend[i] = shrunkLend(sweep.lend[i], sweep.rest_density *
+                                                    sweep.lend_table->fraction((grad_i - own_images).norm()));
+    rho += sweep.lend[i];
   }
   float c = rho * sweep.inv_rho0 - 1.0f;
   sweep_residual_[i] = std::max(c, 0.0f);  // NaN stays NaN: the sweep's error then is too

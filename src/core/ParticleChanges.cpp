@@ -1,5 +1,7 @@
 #include "pbf_ros/core/PbfSolver.h"
 
+#include "FreeSurfaceLend.h"
+
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -36,6 +38,7 @@ std::uint32_t PbfSolver::addParticles(const std::vector<Eigen::Vector3f>& positi
   new_velocity_.resize(n, Eigen::Vector3f::Zero());
   lambda_.resize(n, 0.0f);
   lambda_sum_.resize(n, 0.0f);  // no pressure of their own yet: the first solve gives it
+  surface_lend_.resize(n, FreeSurfaceLend::kUnmeasured);  // nor a lend: measured by the next step
   lists_valid_ = false;
   return first;
 }
@@ -55,6 +58,7 @@ std::size_t PbfSolver::removeParticles(const std::vector<std::uint8_t>& remove) 
       density_[kept] = density_[i];
       neighbor_count_[kept] = neighbor_count_[i];
       lambda_sum_[kept] = lambda_sum_[i];
+      surface_lend_[kept] = surface_lend_[i];
     }
     ++kept;
   }
@@ -70,6 +74,7 @@ std::size_t PbfSolver::removeParticles(const std::vector<std::uint8_t>& remove) 
   new_velocity_.resize(kept);
   lambda_.resize(kept);
   lambda_sum_.resize(kept);
+  surface_lend_.resize(kept);
   lists_valid_ = false;
   return removed;
 }

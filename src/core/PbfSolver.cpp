@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "BlockColours.h"
+#include "FreeSurfaceLend.h"
 #include "PackedSlots.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/ChebyshevAcceleration.h"
@@ -44,9 +45,23 @@ void PbfSolver::setParams(const SolverParams& params) {
   const bool constraint_scale_changed = radius_changed ||
                                         params.densityMass() != params_.densityMass() ||
                                         params.rest_density != params_.rest_density;
+  // The free surface's lend table, built before anything changes (it is calibrated for one
+  // spacing and kernel: the particles' lends are then measured afresh).
+  const bool new_lend_table = params.free_surface_lend &&
+                              (!surface_lend_table_ || surface_lend_table_->spacing() != params.particle_spacing ||
+                               surface_lend_table_->supportRadius() != params.supportRadius());
+  auto lend_table = new_lend_table
+                        ? std::make_unique<FreeSurfaceLend>(params.particle_spacing, params.supportRadius())
+                        : nullptr;
   params_ = params;
   if (radius_changed) lists_valid_ = false;
   if (constraint_scale_changed) lambda_sum_dt_ = 0.0f;
+  if (!params_.free_surface_lend) {
+    surface_lend_table_.reset();
+  } else if (new_lend_table) {
+    surface_lend_table_ = std::move(lend_table);
+    std::fill(surface_lend_.begin(), surface_lend_.end(), FreeSurfaceLend::kUnmeasured);
+  }
   if (lattice_->spacing() != params_.particle_spacing ||
       lattice_->supportRadius() != params_.supportRadius())
     lattice_ = std::make_unique<LatticeBoundary>(params_.particle_spacing, params_.supportRadius());
@@ -103,6 +118,7 @@ void PbfSolver::setParticles(const std::vector<Eigen::Vector3f>& positions,
   lambda_.assign(n, 0.0f);
   lambda_sum_.assign(n, 0.0f);
   lambda_sum_dt_ = 0.0f;  // no pressure yet to start from
+  surface_lend_.assign(n, FreeSurfaceLend::kUnmeasured);
   density_.assign(n, params_.rest_density);
   neighbor_count_.assign(n, 0);
   lists_valid_ = false;
@@ -145,6 +161,7 @@ StepStats PbfSolver::stepWith(float dt) {
   saved_density_ = density_;
   saved_neighbor_count_ = neighbor_count_;
   saved_lambda_sum_ = lambda_sum_;
+  saved_surface_lend_ = surface_lend_;
   bool ok = false;
   for (int attempt = 0; attempt <= params_.max_nan_retries; ++attempt) {
     StepStats trial = stats;
@@ -160,6 +177,7 @@ StepStats PbfSolver::stepWith(float dt) {
     density_ = saved_density_;
     neighbor_count_ = saved_neighbor_count_;
     lambda_sum_ = saved_lambda_sum_;
+    surface_lend_ = saved_surface_lend_;
     lists_valid_ = false;
     ++stats.nan_retries;
     dt *= 0.5f;
@@ -206,6 +224,7 @@ std::vector<StepStats> PbfSolver::advance(double duration) {
 bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   stats.dt = dt;
   current_dt_ = dt;
+  surface_lend_set_ = false;  // the solve's first pass updates this step's lend
   if (track_wrenches_)
     wrench_sums_.reset(SolidBoundaries::kContainerFaces + obstacles_.size(), omp_get_max_threads());
   auto t = Clock::now();

@@ -127,6 +127,7 @@ const std::map<std::string, Setter>& solverSetters() {
     f("density_tolerance", &SolverParams::density_tolerance);
     f("cfm_relaxation", &SolverParams::cfm_relaxation);
     b("unilateral_constraint", &SolverParams::unilateral_constraint);
+    b("free_surface_lend", &SolverParams::free_surface_lend);
     b("warm_start", &SolverParams::warm_start);
     f("chebyshev_rho", &SolverParams::chebyshev_rho);
     b("gauss_seidel", &SolverParams::gauss_seidel);

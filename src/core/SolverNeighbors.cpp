@@ -40,6 +40,7 @@ void PbfSolver::reorder(const std::vector<std::uint32_t>& order) {
   permute(predicted_, reorder_scratch_);
   permute(id_, reorder_id_scratch_);
   permute(lambda_sum_, reorder_float_scratch_);  // the warm start follows its particle
+  permute(surface_lend_, reorder_float_scratch_);  // and so does the free surface's lend
   chebyshev_->reorder(order, reorder_scratch_);   // mid-solve rebuilds only
 }
 

@@ -106,6 +106,8 @@ void PbfSolver::measureDensity(const std::vector<Eigen::Vector3f>& at, const flo
   const NeighborArrays arrays{at.empty() ? nullptr : at[0].data(), grid_->offsets().data(),
                               grid_->indices().data(), packed};
   const PairConstants pc{k.h, k.h2, 0.0f, density_mass * k.spiky_coef, 0.0f, 0.0f};
+  // The free surface's lend, as the constraint passes add it (FreeSurfaceLend.h).
+  const float* const lend = surface_lend_table_ && surface_lend_.size() == n ? surface_lend_.data() : nullptr;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f pi = at[i];
@@ -124,7 +126,7 @@ void PbfSolver::measureDensity(const std::vector<Eigen::Vector3f>& at, const flo
       Eigen::Vector3f unused = Eigen::Vector3f::Zero();
       if (solids.density(pi, fraction, unused)) wall += params_.rest_density * fraction;
     }
-    density_[i] = rho + wall;
+    density_[i] = rho + wall + (lend != nullptr ? std::max(lend[i], 0.0f) : 0.0f);
     neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(s.count, 65535));
   }
 }

@@ -25,6 +25,7 @@ void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
   c.density_tolerance = p.density_tolerance;
   c.cfm_relaxation = p.cfm_relaxation;
   c.unilateral_constraint = p.unilateral_constraint;
+  c.free_surface_lend = p.free_surface_lend;
   c.warm_start = p.warm_start;
   c.chebyshev_rho = p.chebyshev_rho;
   c.gauss_seidel = p.gauss_seidel;
@@ -58,6 +59,7 @@ pbf::SolverParams configToSolverParams(const FluidConfig& c, pbf::SolverParams b
   p.density_tolerance = static_cast<float>(c.density_tolerance);
   p.cfm_relaxation = static_cast<float>(c.cfm_relaxation);
   p.unilateral_constraint = c.unilateral_constraint;
+  p.free_surface_lend = c.free_surface_lend;
   p.warm_start = c.warm_start;
   p.chebyshev_rho = static_cast<float>(c.chebyshev_rho);
   p.gauss_seidel = c.gauss_seidel;

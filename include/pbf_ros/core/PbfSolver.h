@@ -23,6 +23,7 @@ class ContainerMirror;
 struct NeighborArrays;
 struct PairConstants;
 struct Reflection;
+class FreeSurfaceLend;
 class LatticeBoundary;
 class NeighborGrid;
 class SolidBoundaries;
@@ -210,10 +211,15 @@ class PbfSolver {
   std::vector<Eigen::Vector3f> wall_gradient_;  // solids' part of grad C, lambda -> delta p
   std::vector<float> density_;
   std::vector<std::uint16_t> neighbor_count_;
+  // The free surface's lend of each particle (FreeSurfaceLend.h), kept across steps and
+  // lowered by each step's first constraint pass; FreeSurfaceLend::kUnmeasured before it.
+  std::vector<float> surface_lend_;
+  std::unique_ptr<FreeSurfaceLend> surface_lend_table_;  // while the option is on
+  bool surface_lend_set_ = false;  // this attempt's first pass has updated surface_lend_
   // Backups to reject a non-finite step: everything a step changes.
   std::vector<Eigen::Vector3f> saved_position_, saved_velocity_;
   std::vector<std::uint32_t> saved_id_;
-  std::vector<float> saved_density_, saved_lambda_sum_;
+  std::vector<float> saved_density_, saved_lambda_sum_, saved_surface_lend_;
   std::vector<std::uint16_t> saved_neighbor_count_;
   // Scratch for reorder() (swapped with the arrays it permutes).
   std::vector<Eigen::Vector3f> reorder_scratch_;

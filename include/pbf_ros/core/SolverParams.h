@@ -82,6 +82,12 @@ struct SolverParams {
   // C = max(rho/rho0 - 1, 0): only compression is corrected, so surface particles with
   // missing neighbours are not pulled together (no clumping). Off: the seed's C = rho/rho0 - 1.
   bool unilateral_constraint = true;
+  // Lend each particle by a free surface the density the air side would add were it fluid
+  // (FreeSurfaceLend.h): the top layer then keeps a constraint of its own instead of sinking
+  // into the layer below, and a resting tank keeps its level (README "Calibration"). A
+  // particle is lent what its neighbourhood lacked when it entered the fluid and loses it as
+  // it is buried; a surface formed later is not lent. Off: the truncated sums of the seed.
+  bool free_surface_lend = false;
   // Artificial pressure s_corr of eq 11 (Monaghan 2000), scaled by h^2 so that k is
   // dimensionless (see PbfSolver.cpp). k = 0 disables it at no cost.
   float scorr_k = 0.0f;
