@@ -7,6 +7,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "FreeSurfaceLend.h"
 #include "SolverTestUtil.h"
