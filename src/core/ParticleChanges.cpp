@@ -1,10 +1,10 @@
 #include "pbf_ros/core/PbfSolver.h"
 
-#include "FreeSurfaceLend.h"
-
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "FreeSurfaceLend.h"
 
 // Particles that enter and leave between steps (sources, drains, ~emit). Every per-particle
 // array that lives across steps grows or shrinks with the state; the per-step scratch is
