@@ -97,8 +97,8 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   const bool projected = params_.projectedSolve();
   if (projected) complementarity_residual_.resize(n);
   float* const lend = surface_lend_table_ ? surface_lend_.data() : nullptr;
-  const FreeSurfaceLend* const lend_table = surface_lend_table_.get();
-  const bool update_lend = !surface_lend_set_;
+  // Set while this is the step's first pass: it lowers the lend.
+  const FreeSurfaceLend* const lower_lend = surface_lend_set_ ? nullptr : surface_lend_table_.get();
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -149,9 +149,9 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       wall_gradient_[i] = gw;  // the delta-p pass sees the same position
     }
     if (lend != nullptr) {  // the free surface's (FreeSurfaceLend.h), lowered by the first pass
-      if (update_lend) {
+      if (lower_lend != nullptr) {
         const Eigen::Vector3f one_sided = Eigen::Vector3f(gx, gy, gz) - own_images;
-        lend[i] = shrunkLend(lend[i], params_.rest_density * lend_table->fraction(one_sided.norm()));
+        lend[i] = lower_lend->lowered(lend[i], one_sided.norm(), params_.rest_density);
       }
       rho += lend[i];
     }

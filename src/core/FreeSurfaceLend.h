@@ -45,6 +45,13 @@ class FreeSurfaceLend {
   // The lend, as a fraction of rho0, for a one-sided gradient of norm grad_norm [1/m].
   float fraction(float grad_norm) const;
 
+  // A particle's lend [kg/m^3] after this step's first pass: its first measurement, or the
+  // smaller of what it kept and what its one-sided gradient now shows (see above).
+  float lowered(float kept, float grad_norm, float rest_density) const {
+    const float now = rest_density * fraction(grad_norm);
+    return kept < 0.0f ? now : (now < kept ? now : kept);
+  }
+
   // The start lattice's top layer: what it misses, as a fraction of rho0 (0.1135 at h = 2d),
   // and its one-sided gradient [1/m] (0.387 / d): the point the lend is calibrated on.
   float latticeTopDeficit() const { return lattice_deficit_; }
@@ -59,9 +66,5 @@ class FreeSurfaceLend {
   float step_ = 1.0f;                                        // table step in units of 1/d
   std::vector<float> table_;                                 // lend fraction per step
 };
-
-// A particle's lend after this step's first pass: its first measurement, or the smaller of
-// what it had and what its neighbourhood now shows (see above).
-inline float shrunkLend(float kept, float now) { return kept < 0.0f ? now : (now < kept ? now : kept); }
 
 }  // namespace pbf

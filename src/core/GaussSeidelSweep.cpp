@@ -75,11 +75,11 @@ struct PbfSolver::SweepContext {
   bool unilateral, walls;
   SolidBoundaries solids;
   ContainerMirror images;
-  // The free surface's lend (FreeSurfaceLend.h; null when off), lowered from each particle's
-  // one-sided gradient by the step's first sweep (update) and added to its density.
+  // The free surface's lend (FreeSurfaceLend.h; null when off), added to each density; the
+  // table is set for the step's first sweep only, which lowers the lend from each particle's
+  // one-sided gradient.
   float* lend;
-  const FreeSurfaceLend* lend_table;
-  bool update_lend;
+  const FreeSurfaceLend* lower_lend;
 
   Eigen::Vector3f at(std::size_t j) const {
     const float* p = position + stride * j;
@@ -187,8 +187,7 @@ float PbfSolver::gaussSeidelSweep() {
                            boundaries(),
                            images,
                            surface_lend_table_ ? surface_lend_.data() : nullptr,
-                           surface_lend_table_.get(),
-                           !surface_lend_set_};
+                           surface_lend_set_ ? nullptr : surface_lend_table_.get()};
 #pragma omp parallel
   {
     const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
@@ -307,9 +306,8 @@ void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& swee
     }
   }
   if (sweep.lend != nullptr) {
-    if (sweep.update_lend)
-      sweep.lend[i] = shrunkLend(sweep.lend[i], sweep.rest_density *
-                                                    sweep.lend_table->fraction((grad_i - own_images).norm()));
+    if (sweep.lower_lend != nullptr)
+      sweep.lend[i] = sweep.lower_lend->lowered(sweep.lend[i], (grad_i - own_images).norm(), sweep.rest_density);
     rho += sweep.lend[i];
   }
   float c = rho * sweep.inv_rho0 - 1.0f;
