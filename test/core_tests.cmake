@@ -14,3 +14,4 @@ target_include_directories(test_core_neighbor_grid PRIVATE src/core)
 target_include_directories(test_core_neighbor_sums PRIVATE src/core)
 target_include_directories(test_core_gauss_seidel PRIVATE src/core)
 target_include_directories(test_core_free_surface_lend PRIVATE src/core)
+target_include_directories(test_core_solver_physics PRIVATE src/core)  # the lend in the transcription

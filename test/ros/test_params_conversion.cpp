@@ -25,7 +25,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   p.max_iterations = 7;
   p.adaptive_time_step = false;
   p.unilateral_constraint = false;
-  p.free_surface_lend = true;
+  p.free_surface_lend = false;  // not the default: the round trip must carry it
   p.warm_start = true;
   p.chebyshev_rho = 0.9f;
   p.gauss_seidel = false;  // not the default: the round trip must carry it
@@ -45,7 +45,7 @@ TEST(ParamsConversion, RoundTripKeepsEverySolverField) {
   EXPECT_EQ(q.max_iterations, 7);
   EXPECT_FALSE(q.adaptive_time_step);
   EXPECT_FALSE(q.unilateral_constraint);
-  EXPECT_TRUE(q.free_surface_lend);
+  EXPECT_FALSE(q.free_surface_lend);
   EXPECT_TRUE(q.warm_start);
   EXPECT_FLOAT_EQ(q.chebyshev_rho, 0.9f);
   EXPECT_FALSE(q.gauss_seidel);

@@ -90,7 +90,13 @@ class PbfSolver {
   std::size_t size() const { return position_.size(); }
   const std::vector<Eigen::Vector3f>& positions() const { return position_; }
   const std::vector<Eigen::Vector3f>& velocities() const { return velocity_; }
-  const std::vector<float>& densities() const { return density_; }  // after the last step
+  // After the last step, what the solids and the free surface lend included.
+  const std::vector<float>& densities() const { return density_; }
+  // What the free surface lends particle i in densities() [kg/m^3] (FreeSurfaceLend.h):
+  // 0 with SolverParams::free_surface_lend off, or before the particle's first step.
+  float surfaceLend(std::size_t i) const {
+    return surface_lend_table_ && surface_lend_[i] > 0.0f ? surface_lend_[i] : 0.0f;
+  }
   const std::vector<std::uint32_t>& ids() const { return id_; }
   // Neighbour count (within h) of each particle at the last density evaluation; small
   // counts mark surface particles (the renderer draws only those if it wants).

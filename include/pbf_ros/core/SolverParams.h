@@ -87,7 +87,7 @@ struct SolverParams {
   // into the layer below, and a resting tank keeps its level (README "Calibration"). A
   // particle is lent what its neighbourhood lacked when it entered the fluid and loses it as
   // it is buried; a surface formed later is not lent. Off: the truncated sums of the seed.
-  bool free_surface_lend = false;
+  bool free_surface_lend = true;
   // Artificial pressure s_corr of eq 11 (Monaghan 2000), scaled by h^2 so that k is
   // dimensionless (see PbfSolver.cpp). k = 0 disables it at no cost.
   float scorr_k = 0.0f;
