@@ -27,6 +27,7 @@ add_library(pbf_core
   src/core/BlockColours.cpp
   src/core/ChebyshevAcceleration.cpp
   src/core/VelocityPasses.cpp
+  src/core/DensityMeasurement.cpp
   src/core/StepGuards.cpp
   src/core/NeighborSumsDispatch.cpp
   $<TARGET_OBJECTS:pbf_neighbor_sums_base>

@@ -10,9 +10,11 @@ namespace pbf {
 // Sum of f(i) over [0, n) in a fixed association order: chunks of fixed size summed in
 // parallel, then the chunk sums in order. Results are bitwise identical for any thread
 // count, which keeps tolerance-driven iteration counts independent of the threads.
+constexpr std::size_t kDeterministicSumChunk = 2048;
+
 template <typename F>
 inline double deterministicSum(std::size_t n, F f) {
-  constexpr std::size_t kChunk = 2048;
+  constexpr std::size_t kChunk = kDeterministicSumChunk;
   const std::size_t chunks = (n + kChunk - 1) / kChunk;
   // Kept between calls: no allocation per call. The reference, taken here, is the calling
   // thread's vector; inside the loop `kept` would name each worker's own.

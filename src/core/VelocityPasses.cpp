@@ -94,43 +94,6 @@ bool PbfSolver::updateVelocities(float dt) {
   return moved;
 }
 
-void PbfSolver::measureDensity(const std::vector<Eigen::Vector3f>& at, const float* packed) {
-  const std::size_t n = size();
-  const Kernels k(params_.supportRadius());
-  const float density_mass = params_.densityMass();
-  const float self_density = density_mass * k.spiky(0.0f);
-  neighbor_count_.resize(n);
-  const bool walls = params_.wall_density;
-  const SolidBoundaries solids = boundaries();
-  const ContainerMirror images = containerMirror();
-  const NeighborArrays arrays{at.empty() ? nullptr : at[0].data(), grid_->offsets().data(),
-                              grid_->indices().data(), packed};
-  const PairConstants pc{k.h, k.h2, 0.0f, density_mass * k.spiky_coef, 0.0f, 0.0f};
-  // The free surface's lend, as the constraint passes add it (FreeSurfaceLend.h).
-  const float* const lend = surface_lend_table_ && surface_lend_.size() == n ? surface_lend_.data() : nullptr;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f pi = at[i];
-    const DensitySum s = densitySums(arrays, pc, i);
-    const float rho = self_density + s.rho;
-    float wall = 0.0f;
-    Reflection refl[ContainerMirror::kMaxReflections];
-    const int reflections = images.reflections(pi, refl);
-    for (int q = 0; q < reflections; ++q) {
-      wall += imageDensitySums(arrays, pc, i, refl[q]).rho;
-      const float rlen = ContainerMirror::imageOffset(refl[q], arrays.position, i, i).norm();
-      wall += density_mass * k.spiky(rlen);  // zero beyond h
-    }
-    if (walls) {
-      float fraction = 0.0f;
-      Eigen::Vector3f unused = Eigen::Vector3f::Zero();
-      if (solids.density(pi, fraction, unused)) wall += params_.rest_density * fraction;
-    }
-    density_[i] = rho + wall + (lend != nullptr ? std::max(lend[i], 0.0f) : 0.0f);
-    neighbor_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(s.count, 65535));
-  }
-}
-
 const float* PbfSolver::computeDensityAndVorticity(bool density_known) {
   const std::size_t n = size();
   const Kernels k(params_.supportRadius());

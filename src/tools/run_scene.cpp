@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
     double next_print = 0.0, step_ms = 0.0;
     int steps_since = 0, nan_retries = 0;
     long long total_iterations = 0;
-    long long total_density_checks = 0;
+    long long total_density_checks = 0, total_stopped_early = 0;
     while (solver.time() < seconds - 1e-9) {
       floating.prepare(solver);
       const pbf::StepStats st = solver.step();
@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
       nan_retries += st.nan_retries;
       total_iterations += st.iterations;
       total_density_checks += st.density_checks;
+      total_stopped_early += st.density_checks_stopped_early;
       if (st.failed) {
         std::fprintf(stderr, "pbf_run: step failed even at the smallest dt\n");
         return 1;
@@ -134,8 +135,9 @@ int main(int argc, char** argv) {
     const double steps = static_cast<double>(std::max<std::uint64_t>(solver.stepCount(), 1));
     std::printf("pbf_run: %.2f constraint iterations per step\n", static_cast<double>(total_iterations) / steps);
     if (scene.solver.gauss_seidel && scene.solver.density_tolerance > 0.0f)
-      std::printf("pbf_run: %.2f density measurements per step (the sweeps' stop test)\n",
-                  static_cast<double>(total_density_checks) / steps);
+      std::printf("pbf_run: %.2f density measurements per step (the sweeps' stop test), %.2f of them "
+                  "stopped once the part measured failed it\n",
+                  static_cast<double>(total_density_checks) / steps, static_cast<double>(total_stopped_early) / steps);
     if (!scene.emitters.empty() || !scene.drains.empty())
       std::printf("pbf_run: %zu particles = %zu at start + %llu emitted - %llu drained\n", solver.size(),
                   sources.initialParticles(), static_cast<unsigned long long>(sources.emitted()),

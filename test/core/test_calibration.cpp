@@ -231,7 +231,9 @@ TEST(Calibration, ColumnsAlongTheWallsAreHeldLikeTheMiddle) {
                 "walls %.4f, in the middle %.4f m/s\n",
                 gauss_seidel ? "Gauss-Seidel" : "Jacobi", max_speed, wall_rms, middle_rms);
     EXPECT_LT(wall_rms, 1.25 * middle_rms);
-    if (!gauss_seidel) EXPECT_LT(max_speed, 0.05);
+    if (!gauss_seidel) {
+      EXPECT_LT(max_speed, 0.05);
+    }
   }
 }
 

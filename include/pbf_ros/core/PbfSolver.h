@@ -172,9 +172,20 @@ class PbfSolver {
   // Returns the packed positions (PackedSlots.h) it read, or nullptr: the velocity passes
   // that follow read them too, as nothing moves in between.
   const float* computeDensityAndVorticity(bool density_known);
-  // density_ and neighbor_count_ at `at` (positions in the current lists' order; `packed`:
-  // the same in slots, PackedSlots::packPositions, or nullptr).
+  // Density measurements (DensityMeasurement.cpp). density_ and neighbor_count_ at `at`
+  // (positions in the current lists' order; `packed`: the same in slots,
+  // PackedSlots::packPositions, or nullptr).
   void measureDensity(const std::vector<Eigen::Vector3f>& at, const float* packed);
+  struct DensityContext;
+  DensityContext densityContext(const std::vector<Eigen::Vector3f>& at, const float* packed) const;
+  void measureDensityOf(std::size_t i, const DensityContext& c);
+  // The Gauss-Seidel stop test: whether the average compression max(rho/rho0 - 1, 0) at the
+  // predictions is within `tolerance`, measuring density_ and neighbor_count_ there. It stops
+  // measuring, if may_stop_early, once the part measured already exceeds the tolerance (the
+  // rest of density_ is then stale: another sweep follows). `error`: the average, or on such
+  // a stop (stopped_early) a lower bound.
+  bool densityWithinTolerance(const float* packed, double tolerance, bool may_stop_early, double& error,
+                              bool& stopped_early);
   void applyViscosityAndVorticity(float dt, const float* packed_positions);
   void enforceSpeedLimit(float dt, StepStats& stats);
   bool stateIsFinite() const;
@@ -235,6 +246,7 @@ class PbfSolver {
   std::unique_ptr<NeighborGrid> grid_;
   std::unique_ptr<BlockColours> colours_;  // of the grid's last build (Gauss-Seidel order)
   bool colours_valid_ = false;
+  std::vector<double> chunk_compression_;  // the stop test's sum per deterministicSum chunk
   std::vector<float> sweep_residual_;     // each constraint's compression when projected
   std::unique_ptr<ChebyshevAcceleration> chebyshev_;  // of the constraint iterations
   std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h

@@ -51,6 +51,7 @@ struct StepStats {
   double dt = 0.0;                       // time step actually taken [s]
   int iterations = 0;                    // constraint iterations used (a warm start is one)
   int density_checks = 0;                // density passes of the Gauss-Seidel stop test
+  int density_checks_stopped_early = 0;  // ... that stopped once the part measured failed it
   double final_sweep_residual = 0.0;     // mean compression each constraint had when the last
                                          // measured sweep reached it (Gauss-Seidel)
   bool iteration_cap_reached = false;    // stopped at max_iterations above density_tolerance
