@@ -83,9 +83,6 @@ namespace {
 // Below this many chunks per thread the stop test measures every particle: the chunks would
 // not share out evenly among the threads (the particle-by-particle split does).
 constexpr std::size_t kFewestChunksPerThreadToStopEarly = 4;
-// Each thread measures its chunks this many strides apart, so that the first ones sample its
-// whole share of the fluid: the compression is not even (most at the bottom of a column).
-constexpr std::size_t kChunkStride = 4;
 
 }  // namespace
 
@@ -117,6 +114,9 @@ bool PbfSolver::densityWithinTolerance(const float* packed, double tolerance, bo
   neighbor_count_.resize(n);
   const DensityContext c = densityContext(predicted_, packed);
   chunk_compression_.assign(chunks, 0.0);
+  chunk_residual_.resize(chunks);
+  chunk_order_.resize(chunks);
+  const bool ranked = sweep_residual_.size() == n;  // the sweep just made measured these
   // Exceeded by a margin far above the sums' rounding, so that a stop is never a test the
   // exact sum would have passed.
   const double exceeded_at = tolerance * static_cast<double>(n) * (1.0 + 1e-9);
@@ -127,30 +127,44 @@ bool PbfSolver::densityWithinTolerance(const float* packed, double tolerance, bo
     const auto thread = static_cast<std::size_t>(omp_get_thread_num());
     const auto threads = static_cast<std::size_t>(omp_get_num_threads());
     const std::size_t begin = chunks * thread / threads, end = chunks * (thread + 1) / threads;
-    for (std::size_t first = begin; first < std::min(end, begin + kChunkStride); ++first)
-      for (std::size_t chunk = first; chunk < end; chunk += kChunkStride) {
-        bool stop;
+    // The chunks the sweep left most compressed first: the compression is far from even
+    // (most at the bottom of a column), and the sooner the part measured fails, the less is
+    // measured. The sweep's own residuals rank them (an order only: it changes no result).
+    for (std::size_t chunk = begin; chunk < end; ++chunk) {
+      double residual = 0.0;
+      const std::size_t last = std::min(n, (chunk + 1) * kChunk);
+      if (ranked)
+        for (std::size_t i = chunk * kChunk; i < last; ++i) residual += sweep_residual_[i];
+      chunk_residual_[chunk] = residual;
+      chunk_order_[chunk] = static_cast<std::uint32_t>(chunk);
+    }
+    std::sort(chunk_order_.begin() + static_cast<std::ptrdiff_t>(begin),
+              chunk_order_.begin() + static_cast<std::ptrdiff_t>(end),
+              [&](std::uint32_t a, std::uint32_t b) { return chunk_residual_[a] > chunk_residual_[b]; });
+    for (std::size_t q = begin; q < end; ++q) {
+      const std::size_t chunk = chunk_order_[q];
+      bool stop;
 #pragma omp atomic read
-        stop = exceeded;
-        if (stop) break;
-        const std::size_t last = std::min(n, (chunk + 1) * kChunk);
-        double sum = 0.0;
-        for (std::size_t i = chunk * kChunk; i < last; ++i) {
-          measureDensityOf(i, c);
-          sum += compression(i);
-        }
-        chunk_compression_[chunk] = sum;
-        double so_far;
-#pragma omp atomic capture
-        {
-          measured += sum;
-          so_far = measured;
-        }
-        if (so_far > exceeded_at) {
-#pragma omp atomic write
-          exceeded = true;
-        }
+      stop = exceeded;
+      if (stop) break;
+      const std::size_t last = std::min(n, (chunk + 1) * kChunk);
+      double sum = 0.0;
+      for (std::size_t i = chunk * kChunk; i < last; ++i) {
+        measureDensityOf(i, c);
+        sum += compression(i);
       }
+      chunk_compression_[chunk] = sum;
+      double so_far;
+#pragma omp atomic capture
+      {
+        measured += sum;
+        so_far = measured;
+      }
+      if (so_far > exceeded_at) {
+#pragma omp atomic write
+        exceeded = true;
+      }
+    }
   }
   if (exceeded) {
     error = measured / static_cast<double>(n);

@@ -246,7 +246,9 @@ class PbfSolver {
   std::unique_ptr<NeighborGrid> grid_;
   std::unique_ptr<BlockColours> colours_;  // of the grid's last build (Gauss-Seidel order)
   bool colours_valid_ = false;
-  std::vector<double> chunk_compression_;  // the stop test's sum per deterministicSum chunk
+  std::vector<double> chunk_compression_;  // the stop test's sum per deterministicSum chunk,
+  std::vector<double> chunk_residual_;     // the sweep's residual per chunk,
+  std::vector<std::uint32_t> chunk_order_;  // and the order it measures them in
   std::vector<float> sweep_residual_;     // each constraint's compression when projected
   std::unique_ptr<ChebyshevAcceleration> chebyshev_;  // of the constraint iterations
   std::unique_ptr<LatticeBoundary> lattice_;  // wall density for the current d and h
