@@ -89,7 +89,7 @@ constexpr std::size_t kFewestChunksPerThreadToStopEarly = 4;
 // Every particle's compression max(rho/rho0 - 1, 0) is >= 0, so the chunks measured so far
 // bound the total from below: once they exceed the tolerance the test has failed, whatever
 // the rest holds, and the rest is left unmeasured (at tight tolerances most measurements fail:
-// the 1 m^3 dam break at 0.01 % measures about 5 times a step and passes once). A test that
+// the 1 m^3 dam break at 0.01 % measures about 7 times a step and passes once). A test that
 // passes has measured every chunk and sums them as deterministicSum does, chunk by chunk in
 // order: the same decisions and, when it passes, the same densities and error, bitwise, for
 // any thread count and whichever thread stopped first. Each thread keeps to the chunks of
@@ -116,7 +116,7 @@ bool PbfSolver::densityWithinTolerance(const float* packed, double tolerance, bo
   chunk_compression_.assign(chunks, 0.0);
   chunk_residual_.resize(chunks);
   chunk_order_.resize(chunks);
-  const bool ranked = sweep_residual_.size() == n;  // the sweep just made measured these
+  const bool ranked = sweep_residual_.size() == n;  // one residual per particle: the sweep's
   // Exceeded by a margin far above the sums' rounding, so that a stop is never a test the
   // exact sum would have passed.
   const double exceeded_at = tolerance * static_cast<double>(n) * (1.0 + 1e-9);
