@@ -116,7 +116,6 @@ bool PbfSolver::densityWithinTolerance(const float* packed, double tolerance, bo
   chunk_compression_.assign(chunks, 0.0);
   chunk_residual_.resize(chunks);
   chunk_order_.resize(chunks);
-  const bool ranked = sweep_residual_.size() == n;  // one residual per particle: the sweep's
   // Exceeded by a margin far above the sums' rounding, so that a stop is never a test the
   // exact sum would have passed.
   const double exceeded_at = tolerance * static_cast<double>(n) * (1.0 + 1e-9);
@@ -129,12 +128,12 @@ bool PbfSolver::densityWithinTolerance(const float* packed, double tolerance, bo
     const std::size_t begin = chunks * thread / threads, end = chunks * (thread + 1) / threads;
     // The chunks the sweep left most compressed first: the compression is far from even
     // (most at the bottom of a column), and the sooner the part measured fails, the less is
-    // measured. The sweep's own residuals rank them (an order only: it changes no result).
+    // measured. The sweep's own residuals rank them (an order only: it changes no result,
+    // nor does a rebuild of the lists after the sweep that left them in the old order).
     for (std::size_t chunk = begin; chunk < end; ++chunk) {
       double residual = 0.0;
       const std::size_t last = std::min(n, (chunk + 1) * kChunk);
-      if (ranked)
-        for (std::size_t i = chunk * kChunk; i < last; ++i) residual += sweep_residual_[i];
+      for (std::size_t i = chunk * kChunk; i < last; ++i) residual += sweep_residual_[i];
       chunk_residual_[chunk] = residual;
       chunk_order_[chunk] = static_cast<std::uint32_t>(chunk);
     }
