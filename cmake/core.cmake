@@ -42,6 +42,7 @@ add_library(pbf_core
   src/core/SolverParams.cpp
   src/core/Scene.cpp
   src/core/Metrics.cpp
+  src/core/FreeSurfaceHeight.cpp
   src/core/Obstacle.cpp
   src/core/TriangleMesh.cpp
   src/core/SignedDistanceGrid.cpp

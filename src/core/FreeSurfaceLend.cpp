@@ -11,12 +11,10 @@ namespace pbf {
 namespace {
 
 // Spiky, W = 15 / (pi H^6) (H - r)^3, in units of d (support H = h / d), against a plane
-// at distance z from the particle: the kernel's integral over that plane, and over the
-// half-space beyond it (both closed form: substitute u = H - r).
-double planeIntegral(double z, double H) {
-  const double u = std::max(H - z, 0.0);
-  return 30.0 / std::pow(H, 6.0) * (H * std::pow(u, 4.0) / 4.0 - std::pow(u, 5.0) / 5.0);
-}
+// at distance z from the particle: the kernel's integral over that plane
+// (continuumPlaneIntegral), and over the half-space beyond it (closed form: substitute
+// u = H - r).
+double planeIntegral(double z, double H) { return continuumPlaneIntegral(z, H); }
 double beyondPlane(double s, double H) {
   const double u = std::max(H - s, 0.0);
   return 30.0 / std::pow(H, 6.0) * (H * std::pow(u, 5.0) / 20.0 - std::pow(u, 6.0) / 30.0);

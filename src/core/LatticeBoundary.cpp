@@ -196,6 +196,14 @@ double continuumHalfSpaceFraction(double s, double h) {
   return 2.0 * M_PI * spikyCoefficient(h) * integratePolynomial(multiply(spikyPolynomial(h), cap), s, h);
 }
 
+double continuumPlaneIntegral(double s, double h) {
+  s = std::abs(s);
+  if (s >= h) return 0.0;
+  // Shells of radius r > s cut the plane in a circle: the area element is 2 pi r dr.
+  const std::array<double, 2> circle = {0, 1};
+  return 2.0 * M_PI * spikyCoefficient(h) * integratePolynomial(multiply(spikyPolynomial(h), circle), s, h);
+}
+
 double continuumBallFraction(double s, double radius, double h) {
   if (s >= h) return 0.0;
   // Shells of radius r around the particle: the part of each shell inside the ball is a

@@ -86,8 +86,10 @@ TEST(FreeSurfaceLend, FreshLatticeSumsToRestDensityAtItsSurfaceAndWalls) {
 }
 
 // The shipped tank (d = 0.02 m) solved to 0.03 %: without the lend its top layer sinks
-// into the second and the level falls 1.3 % short of what the volume implies; with it the
-// level holds within 0.2 % (README "Calibration", the free surface).
+// into the second's hollows and the free surface (the colour field's half level) falls 0.65 %
+// short of what the volume implies; with it, 0.35 %. What the lend does not hold is the
+// bulk's: the cubic start lattice relaxes into a packing 0.3 % denser at the same kernel sum,
+// in a closed box filled to its lid as well (README "Calibration", the start-up).
 TEST(FreeSurfaceLend, RestingTankKeepsTheLevelItsVolumeImplies) {
   pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
   scene.solver.density_tolerance = 3e-4f;
@@ -101,8 +103,8 @@ TEST(FreeSurfaceLend, RestingTankKeepsTheLevelItsVolumeImplies) {
     std::printf("shipped tank at 0.03 %%, 1.5 s, lend %s: level %.4f of the implied\n",
                 lend ? "on" : "off", level);
     if (lend) {
-      EXPECT_NEAR(level, 1.0, 0.002);
-      EXPECT_GT(level - level_off, 0.01) << "the lend is what holds the level";
+      EXPECT_NEAR(level, 1.0, 0.005);
+      EXPECT_GT(level - level_off, 0.002) << "the lend is what holds the top layer up";
     }
     level_off = level;
   }

@@ -66,4 +66,9 @@ double latticeGradientScale(double support_radius_factor);
 double continuumBallFraction(double s, double radius, double support_radius);
 double continuumHalfSpaceFraction(double s, double support_radius);
 
+// The density kernel (Spiky, support h) integrated over a plane at distance |s| from the
+// particle [1/length]: what the particle adds, on average, to a horizontal slice of a column
+// much wider than h (the free surface gauge, Metrics.h). Closed form, double precision.
+double continuumPlaneIntegral(double s, double support_radius);
+
 }  // namespace pbf

@@ -7,10 +7,14 @@
 
 namespace pbf {
 
-// Height of the free surface above the container floor: particles are binned into
-// vertical columns of width 2 * spacing; each column's top is its highest particle plus
-// half a spacing (the particle radius); the median over columns not touching a side wall
-// is returned. Robust to a few splashing particles.
+// Height of the free surface above the container floor, a level gauge: particles are binned
+// into vertical columns four spacings wide; in each, the colour field (every particle's
+// calibrated volume spread over the column by the kernel, Spiky with h = 2 d) is followed
+// down from above to where it reaches one half, less the 0.146 d by which the discrete
+// layers of a resting lattice put that point below the lattice's surface (its top layer
+// plus half a spacing): the start lattice reads its own level. Returns the median over the
+// columns not touching a side wall (all columns where there are at most two per axis). A
+// rough or sunken top layer reads as its volume sits; a splashing particle does not count.
 double freeSurfaceHeight(const std::vector<Eigen::Vector3f>& positions, float spacing,
                          const Eigen::AlignedBox3f& container);
 

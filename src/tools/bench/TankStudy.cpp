@@ -37,7 +37,8 @@ void runTankStudy(const BenchOptions& o) {
                  "bulk_number_density", "avg_density_error",
                  "max_density_error", "interior_density", "face_density", "edge_density", "corner_density", "wall_gap",
                  "speed_rms_end", "mean_iterations", "steps", "wall_per_sim_s",
-                 "floor_density", "bottom_edge_density", "second_layer_inside_density", "capped_steps"});
+                 "floor_density", "bottom_edge_density", "second_layer_inside_density", "capped_steps",
+                 "mean_height_loss"});
   std::printf("%-22s %9s %17s %12s %12s %10s %10s %32s %8s %9s\n", "run", "particles", "start-up max v",
               "first 0.05 s", "level loss", "bulk n d^3", "avg err", "rho/rho0 inside/face/edge/corner",
               "wall gap", "wall/sim");
@@ -58,19 +59,21 @@ void runTankStudy(const BenchOptions& o) {
              r.avg_density_error, r.max_density_error, r.interior_density, r.face_density, r.edge_density, r.corner_density,
              r.wall_gap, r.residual_speed_rms, r.mean_iterations,
              r.totals.steps, r.totals.wallPerSimSecond(), r.floor_density, r.bottom_edge_density,
-             r.second_layer_inside_density, r.totals.capped_steps});
+             r.second_layer_inside_density, r.totals.capped_steps, r.mean_height_loss});
     std::printf("%-22s %9zu %13.3f m/s %8.3f m/s %10.2f %% %10.4f %8.3f %% %.4f/%.4f/%.4f/%.4f %7.2f d %9.2f\n",
                 run.label.c_str(), r.particles, r.startup_speed_max, r.first_steps_speed_max,
                 100.0 * r.height_loss, r.bulk_number_density,
                 100.0 * r.avg_density_error, r.interior_density, r.face_density, r.edge_density, r.corner_density, r.wall_gap, r.totals.wallPerSimSecond());
     std::printf("%-22s at the floor: first layer %.4f, bottom edges %.4f, corners %.4f, second layer inside %.4f\n",
                 "", r.floor_density, r.bottom_edge_density, r.corner_density, r.second_layer_inside_density);
-    std::printf("%-22s %.1f iterations per step, %lld of %lld steps stopped at max_iterations\n", "",
-                r.mean_iterations, r.totals.capped_steps, r.totals.steps);
+    std::printf("%-22s %.1f iterations per step, %lld of %lld steps stopped at max_iterations; level loss\n"
+                "%-22s of the mean height (2 z_mean) %.2f %%\n", "",
+                r.mean_iterations, r.totals.capped_steps, r.totals.steps, "", 100.0 * r.mean_height_loss);
     std::fflush(stdout);
   }
   std::printf("(start-up: largest particle speed over the first %.1f s, and over the first %.2f s; level\n"
-              " loss = (level the volume implies - free surface) / that level after %.1f s; bulk n d^3:\n"
+              " loss = (level the volume implies - free surface) / that level after %.1f s, the free\n"
+              " surface where the colour field falls to one half (pbf::freeSurfaceHeight); bulk n d^3:\n"
               " particles per d^3 at the end, 2 d from the walls and h below the surface (1 for the\n"
               " start lattice); errors averaged over the last third; at the end: mean density of the\n"
               " particles within d of no, one, two, three walls and h below the surface, and the first\n"
