@@ -11,10 +11,8 @@ namespace pbf {
 namespace {
 
 // Spiky, W = 15 / (pi H^6) (H - r)^3, in units of d (support H = h / d), against a plane
-// at distance z from the particle: the kernel's integral over that plane
-// (continuumPlaneIntegral), and over the half-space beyond it (closed form: substitute
-// u = H - r).
-double planeIntegral(double z, double H) { return continuumPlaneIntegral(z, H); }
+// at distance s from the particle: the kernel over the half-space beyond it (closed form:
+// substitute u = H - r). Its integral over the plane itself is continuumPlaneIntegral.
 double beyondPlane(double s, double H) {
   const double u = std::max(H - s, 0.0);
   return 30.0 / std::pow(H, 6.0) * (H * std::pow(u, 5.0) / 20.0 - std::pow(u, 6.0) / 30.0);
@@ -25,7 +23,7 @@ double depthFor(double p, double H) {
   double lo = 0.0, hi = H;
   for (int k = 0; k < 60; ++k) {
     const double mid = 0.5 * (lo + hi);
-    (planeIntegral(mid, H) > p ? lo : hi) = mid;
+    (continuumPlaneIntegral(mid, H) > p ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
 }
@@ -56,7 +54,7 @@ FreeSurfaceLend::FreeSurfaceLend(float spacing, float support_radius) : d_(spaci
   const double calibration = continuum > 0.0 ? lattice_deficit_ / continuum : 0.0;
   // Tabulated over |grad C| d in [0, Pi(0) / S], the largest a plane surface gives.
   constexpr int kSteps = 1024;
-  const double top = planeIntegral(0.0, H) / S;
+  const double top = continuumPlaneIntegral(0.0, H) / S;
   step_ = static_cast<float>(top / kSteps);
   table_.resize(kSteps + 1);
   for (int k = 0; k <= kSteps; ++k)

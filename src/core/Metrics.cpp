@@ -6,6 +6,12 @@
 
 namespace pbf {
 
+double meanHeightAboveFloor(const std::vector<Eigen::Vector3f>& positions, const Eigen::AlignedBox3f& container) {
+  double z = 0.0;
+  for (const auto& p : positions) z += p.z() - container.min().z();
+  return z / static_cast<double>(std::max<std::size_t>(positions.size(), 1));
+}
+
 std::size_t countOutside(const std::vector<Eigen::Vector3f>& positions,
                          const Eigen::AlignedBox3f& box, float tolerance) {
   const Eigen::Vector3f lo = box.min() - Eigen::Vector3f::Constant(tolerance);

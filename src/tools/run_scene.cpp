@@ -78,15 +78,9 @@ int main(int argc, char** argv) {
                 scene.solver.particle_spacing, seconds);
     std::printf("%8s %7s %7s %5s %9s %9s %8s %10s %8s\n", "t[s]", "steps", "dt[ms]", "iter",
                 "avgErr%", "maxErr%", "vmax", "Ekin[J]", "ms/step");
-    // The particles' mean height above the floor, at the start and at the end: twice it is
-    // the level of a uniform column with the water's potential energy, so its drop is the
-    // fluid's compaction however its surface's layers sit (README "Calibration", the start-up).
-    auto meanHeight = [&]() {
-      double z = 0.0;
-      for (const auto& x : solver.positions()) z += x.z() - scene.container.min().z();
-      return z / std::max<std::size_t>(solver.size(), 1);
-    };
-    const double start_mean_height = meanHeight();
+    // The particles' mean height, at the start and at the end: its drop is the fluid's
+    // compaction (pbf::meanHeightAboveFloor).
+    const double start_mean_height = pbf::meanHeightAboveFloor(solver.positions(), scene.container);
     const auto wall0 = std::chrono::steady_clock::now();
     double next_print = 0.0, step_ms = 0.0;
     int steps_since = 0, nan_retries = 0;
@@ -137,7 +131,7 @@ int main(int argc, char** argv) {
     std::printf("pbf_run: final free-surface height %.4f m, rms speed %.4f m/s, pairs closer than d/2: %zu\n",
                 pbf::freeSurfaceHeight(solver.positions(), scene.solver.particle_spacing, scene.container),
                 std::sqrt(sum_v2 / std::max<std::size_t>(solver.size(), 1)), close_pairs);
-    const double end_mean_height = meanHeight();
+    const double end_mean_height = pbf::meanHeightAboveFloor(solver.positions(), scene.container);
     std::printf("pbf_run: mean particle height above the floor %.5f m (%.5f m at the start: %+.3f %%)\n",
                 end_mean_height, start_mean_height, 100.0 * (end_mean_height / start_mean_height - 1.0));
     std::printf("pbf_run: %.2f s simulated in %.2f s wall (real-time factor %.2f), %llu steps, "

@@ -18,6 +18,11 @@ namespace pbf {
 double freeSurfaceHeight(const std::vector<Eigen::Vector3f>& positions, float spacing,
                          const Eigen::AlignedBox3f& container);
 
+// The particles' mean height above the container floor [m]. Twice it is the level of a
+// uniform column with the water's potential energy: its drop is the fluid's compaction,
+// however the surface's layers sit (README "Calibration", the start-up and the level).
+double meanHeightAboveFloor(const std::vector<Eigen::Vector3f>& positions, const Eigen::AlignedBox3f& container);
+
 // Number of particles farther than `tolerance` outside the box.
 std::size_t countOutside(const std::vector<Eigen::Vector3f>& positions,
                          const Eigen::AlignedBox3f& box, float tolerance);

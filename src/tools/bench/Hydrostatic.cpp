@@ -108,9 +108,7 @@ HydrostaticResult runHydrostatic(const pbf::Scene& scene, double settle_seconds,
   r.avg_density_error = err_n ? err_sum / err_n : NAN;
   const double surface = pbf::freeSurfaceHeight(solver->positions(), d, scene.container);
   r.height_loss = (h_volume - surface) / h_volume;
-  double z_sum = 0.0;
-  for (const auto& x : solver->positions()) z_sum += x.z() - scene.container.min().z();
-  r.mean_height_loss = 1.0 - 2.0 * z_sum / std::max<std::size_t>(1, r.particles) / h_volume;
+  r.mean_height_loss = 1.0 - 2.0 * pbf::meanHeightAboveFloor(solver->positions(), scene.container) / h_volume;
   measureWallLayers(*solver, scene, surface, r);
   r.bulk_number_density = bulkNumberDensity(*solver, scene, surface);
   double v2 = 0.0, vmax2 = 0.0;
