@@ -76,6 +76,8 @@ double latticeOffset(double particle_volume) {
 
 double freeSurfaceHeight(const std::vector<Eigen::Vector3f>& positions, float spacing,
                          const Eigen::AlignedBox3f& container) {
+  // No spacing or no particles: no surface to read (as when no column holds any).
+  if (!(spacing > 0.0f) || positions.empty() || container.isEmpty()) return 0.0;
   const double d = spacing;
   const double volume = 1.0 / latticeKernelSum(kSupport);
   const Eigen::Vector3d lo = container.min().cast<double>();

@@ -15,6 +15,7 @@ namespace pbf {
 // plus half a spacing): the start lattice reads its own level. Returns the median over the
 // columns not touching a side wall (all columns where there are at most two per axis). A
 // rough or sunken top layer reads as its volume sits; a splashing particle does not count.
+// 0 when there is nothing to read: no particles, no spacing, an empty container.
 double freeSurfaceHeight(const std::vector<Eigen::Vector3f>& positions, float spacing,
                          const Eigen::AlignedBox3f& container);
 
