@@ -10,13 +10,10 @@ namespace pbf {
 
 namespace {
 
-// Spiky, W = 15 / (pi H^6) (H - r)^3, in units of d (support H = h / d), against a plane
-// at distance s from the particle: the kernel over the half-space beyond it (closed form:
-// substitute u = H - r). Its integral over the plane itself is continuumPlaneIntegral.
-double beyondPlane(double s, double H) {
-  const double u = std::max(H - s, 0.0);
-  return 30.0 / std::pow(H, 6.0) * (H * std::pow(u, 5.0) / 20.0 - std::pow(u, 6.0) / 30.0);
-}
+// The density kernel (Spiky, Kernels.h) in units of d (support H = h / d) over the
+// half-space beyond a plane at distance s from the particle (continuumHalfSpaceFraction, the
+// walls' continuum). Its integral over the plane itself is continuumPlaneIntegral.
+double beyondPlane(double s, double H) { return continuumHalfSpaceFraction(std::max(s, 0.0), H); }
 
 // The depth s in [0, H] whose plane integral is p (decreasing in s): bisection.
 double depthFor(double p, double H) {
