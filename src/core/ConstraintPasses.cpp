@@ -76,6 +76,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   const float self_density = mass * k.spiky(0.0f);
   const bool unilateral = params_.unilateral_constraint;
   const float eps = params_.cfmEpsilon();
+  const float relaxation = params_.jacobiRelaxation();  // 1 at h = 2d
   const NeighborArrays arrays{P, off, nbr, packed_->packPositions(predicted_)};
   float* const lambda_slots = packed_->lambdaSlots();  // (x*, lambda) for the delta-p pass
   const PairConstants pc{k.h, k.h2, 0.0f, mass * k.spiky_coef,
@@ -162,7 +163,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       // Projected, an expanded particle's negative c may take back its push (below).
       if (unilateral && !projected) c = std::max(c, 0.0f);
       const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
-      const float step = c == 0.0f || !(denom > 0.0f) ? 0.0f : -c / denom;
+      const float step = c == 0.0f || !(denom > 0.0f) ? 0.0f : -relaxation * c / denom;
       li = step;
       if (projected) {
         // The step's summed multiplier stays <= 0: push, or take a push back (relaxed).

@@ -103,6 +103,48 @@ double latticeKernelSum(double support_radius_factor) {
   return sum;
 }
 
+double latticeJacobiAmplification(double support_radius_factor) {
+  static std::mutex cache_mutex;
+  static std::map<double, double> cache;
+  const std::lock_guard<std::mutex> lock(cache_mutex);
+  auto found = cache.find(support_radius_factor);
+  if (found != cache.end()) return found->second;
+  // dC_0/dx_p = (m / rho0) grad_p W(x_0 - x_p) = -(m / rho0) grad W(x_0 - x_p) for p != 0;
+  // the mass and the sign cancel in the ratio. On the lattice dC_0/dx_0 = 0 (symmetry).
+  const UnitSpiky w(support_radius_factor);
+  const int n = static_cast<int>(std::ceil(support_radius_factor));
+  std::vector<std::array<double, 6>> terms;  // offset, gradient
+  double diagonal = 0.0;
+  for (int z = -n; z <= n; ++z)
+    for (int y = -n; y <= n; ++y)
+      for (int x = -n; x <= n; ++x) {
+        const double r2 = double(x * x + y * y + z * z);
+        const double f = w.gradientFactor(r2);
+        if (f == 0.0) continue;
+        terms.push_back({double(x), double(y), double(z), f * x, f * y, f * z});
+        diagonal += f * f * r2;
+      }
+  constexpr int kSteps = 16;
+  double largest = 0.0;
+  for (int a = 0; a <= kSteps; ++a)
+    for (int b = 0; b <= kSteps; ++b)
+      for (int c = 0; c <= kSteps; ++c) {
+        const double kx = M_PI * a / kSteps, ky = M_PI * b / kSteps, kz = M_PI * c / kSteps;
+        double re[3] = {0.0, 0.0, 0.0}, im[3] = {0.0, 0.0, 0.0};
+        for (const auto& t : terms) {
+          const double phase = kx * t[0] + ky * t[1] + kz * t[2];
+          const double cs = std::cos(phase), sn = std::sin(phase);
+          for (int d = 0; d < 3; ++d) re[d] += t[3 + d] * cs, im[d] -= t[3 + d] * sn;
+        }
+        double g2 = 0.0;
+        for (int d = 0; d < 3; ++d) g2 += re[d] * re[d] + im[d] * im[d];
+        largest = std::max(largest, g2);
+      }
+  const double amplification = diagonal > 0.0 ? largest / diagonal : 0.0;
+  cache.emplace(support_radius_factor, amplification);
+  return amplification;
+}
+
 double latticeGradientScale(double support_radius_factor) {
   // Gradient magnitude of the density kernel in units of d: 45 / (pi H^6) (H - r)^2, times m/rho0.
   const double H = support_radius_factor;

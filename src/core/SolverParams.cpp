@@ -21,6 +21,12 @@ float SolverParams::densityMass() const {
   return static_cast<float>(particleMass() / latticeKernelSum(support_radius_factor));
 }
 
+float SolverParams::jacobiRelaxation() const {
+  constexpr double kValidatedFactor = 2.0;
+  const double ratio = latticeJacobiAmplification(kValidatedFactor) / latticeJacobiAmplification(support_radius_factor);
+  return static_cast<float>(std::min(1.0, ratio));
+}
+
 float SolverParams::cfmEpsilon() const {
   const double d = particle_spacing;
   return static_cast<float>(cfm_relaxation * latticeGradientScale(support_radius_factor) / (d * d));

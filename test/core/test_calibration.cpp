@@ -10,6 +10,7 @@
 #include "SolverTestUtil.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
+#include "pbf_ros/core/LatticeBoundary.h"
 #include "pbf_ros/core/Metrics.h"
 #include "pbf_ros/core/NeighborGrid.h"
 
@@ -187,6 +188,38 @@ TEST(Calibration, RestingTankComesToRest) {
   const double rms = std::sqrt(2.0 * energy / seconds / mass);
   std::printf("resting tank, shipped defaults: rms speed over 1.5-2 s %.4f m/s\n", rms);
   EXPECT_LT(rms, 0.05);
+}
+
+// The Jacobi solve at a wider support: its corrections overlap more (latticeJacobiAmplification:
+// the worst mode's overshoot grows from 2.8 at h = 2d to 6.7 at 3d), and unrelaxed it blew a
+// resting tank up at h = 3d (level halved, rms speed 1 m/s within 1.5 s). Relaxed so that its
+// worst mode overshoots as at h = 2d (SolverParams::jacobiRelaxation), the tank rests.
+TEST(Calibration, JacobiSolveAtAWiderSupportIsRelaxedAndRests) {
+  // The amplification, against a Python transcription of the same Fourier sum (2.815 at
+  // h = 2d on the same 17^3 points; 2.814 on 24^3 points of the whole zone).
+  EXPECT_NEAR(pbf::latticeJacobiAmplification(2.0), 2.815, 0.005);
+  EXPECT_GT(pbf::latticeJacobiAmplification(3.0), 2.0 * pbf::latticeJacobiAmplification(2.0));
+  pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
+  EXPECT_EQ(scene.solver.jacobiRelaxation(), 1.0f);  // the validated support: unchanged
+  scene.solver.support_radius_factor = 3.0f;
+  scene.solver.gauss_seidel = false;
+  EXPECT_NEAR(scene.solver.jacobiRelaxation(), 0.42, 0.005);
+  auto solver = pbf_test::makeSolver(scene);
+  const double mass = solver->size() * double(scene.solver.particleMass());
+  double energy = 0.0, seconds = 0.0;
+  while (solver->time() < 1.0) {
+    const pbf::StepStats st = solver->step();
+    ASSERT_FALSE(st.failed);
+    if (solver->time() > 0.75) energy += st.kinetic_energy * st.dt, seconds += st.dt;
+  }
+  const double rms = std::sqrt(2.0 * energy / seconds / mass);
+  const Eigen::Vector2f floor = scene.container.sizes().head<2>();
+  const double implied = mass / scene.solver.rest_density / (floor.x() * floor.y());
+  const double level = pbf::freeSurfaceHeight(solver->positions(), scene.solver.particle_spacing, scene.container) -
+                       scene.container.min().z();
+  std::printf("h = 3d, Jacobi: rms speed over 0.75-1 s %.4f m/s, level %.4f of the implied\n", rms, level / implied);
+  EXPECT_LT(rms, 0.05);
+  EXPECT_NEAR(level / implied, 1.0, 0.01);
 }
 
 // The walls carry their share of the pressure gradient (mirror images, ContainerMirror.h):

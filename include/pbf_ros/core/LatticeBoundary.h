@@ -60,6 +60,15 @@ double latticeKernelSum(double support_radius_factor);
 // scale sum_j |grad_j C|^2 of a resting interior particle, times d^2 (dimensionless).
 double latticeGradientScale(double support_radius_factor);
 
+// The Jacobi solve's largest amplification on the cubic lattice: the largest eigenvalue of
+// D^-1 A for the constraints' linearisation A = grad C grad C^T (D its diagonal), which on a
+// lattice is a convolution; the maximum over wave vectors of |g(k)|^2 / D, g the Fourier sum
+// of one constraint's gradients (sampled on 17^3 points of [0, pi]^3, which the lattice's
+// symmetry makes the whole zone). A Jacobi correction overshoots by this much in its worst
+// mode: 2.81 for factor 2, 4.18 for 2.5, 6.70 for 3 (more neighbours, more overlapping
+// corrections). Cached per factor.
+double latticeJacobiAmplification(double support_radius_factor);
+
 // Fraction of the density kernel (Spiky, support h) lying inside a ball of radius R whose surface is
 // at distance s >= 0 from the particle: the continuum volume a sphere lends. For R -> inf it
 // is the half-space fraction. Closed form (the kernel is polynomial in r). Double precision.

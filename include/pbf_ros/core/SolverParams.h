@@ -143,6 +143,14 @@ struct SolverParams {
   // "mass calibrated to the lattice" (C and its gradient only see m / S), while the fluid
   // keeps the mass of the volume it fills.
   float densityMass() const;
+  // The Jacobi solve's relaxation: each multiplier of its Newton passes is scaled by
+  // min(1, A(2) / A(f)), A = latticeJacobiAmplification (LatticeBoundary.h), f the support
+  // factor. 1 at the shipped h = 2d, where the solve was validated; above it more
+  // neighbours' corrections overlap and an unrelaxed Jacobi solve diverges (at h = 3d a
+  // resting tank blew up: level halved, rms speed 1 m/s); scaled so, its worst mode
+  // overshoots as much as at h = 2d (0.42 at h = 3d). Not used by the Gauss-Seidel sweeps,
+  // whose projections do not overlap.
+  float jacobiRelaxation() const;
   // epsilon of eq 6 [1/m^2] (cfm_relaxation times the resting constraint scale).
   float cfmEpsilon() const;
   // XSPH's per-step coefficient c for a step of dt.
