@@ -21,7 +21,7 @@ float SolverParams::densityMass() const {
   return static_cast<float>(particleMass() / latticeKernelSum(support_radius_factor));
 }
 
-float SolverParams::jacobiRelaxation() const {
+float SolverParams::overlapRelaxation() const {
   constexpr double kValidatedFactor = 2.0;
   const double ratio = latticeJacobiAmplification(kValidatedFactor) / latticeJacobiAmplification(support_radius_factor);
   return static_cast<float>(std::min(1.0, ratio));
