@@ -23,7 +23,8 @@ float SolverParams::densityMass() const {
 
 float SolverParams::overlapRelaxation() const {
   constexpr double kValidatedFactor = 2.0;
-  const double ratio = latticeJacobiAmplification(kValidatedFactor) / latticeJacobiAmplification(support_radius_factor);
+  const double ratio =
+      latticeJacobiAmplification(kValidatedFactor) / latticeJacobiAmplification(support_radius_factor);
   return static_cast<float>(std::min(1.0, ratio));
 }
 

@@ -65,8 +65,8 @@ double latticeGradientScale(double support_radius_factor);
 // lattice is a convolution; the maximum over wave vectors of |g(k)|^2 / D, g the Fourier sum
 // of one constraint's gradients (sampled on 17^3 points of [0, pi]^3, which the lattice's
 // symmetry makes the whole zone). A Jacobi correction overshoots by this much in its worst
-// mode: 2.81 for factor 2, 4.18 for 2.5, 6.70 for 3, 14.4 for 4 (more neighbours, more overlapping
-// corrections). Cached per factor.
+// mode: 2.81 for factor 2, 4.18 for 2.5, 6.70 for 3, 14.4 for 4 (more neighbours, more
+// overlapping corrections). Cached per factor.
 double latticeJacobiAmplification(double support_radius_factor);
 
 // Fraction of the density kernel (Spiky, support h) lying inside a ball of radius R whose surface is
