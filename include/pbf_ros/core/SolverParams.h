@@ -152,7 +152,7 @@ struct SolverParams {
   // tank blew up, level halved, rms speed 1 m/s). The sweeps' gauss_seidel_omega is scaled
   // by it too: a projection then moves a neighbour, which ~3.4x as many projections move at
   // 3d, by as much of its overlap as at 2d; unscaled, the sweeps kept a resting tank at an
-  // rms speed of 0.10 m/s at 3d and 0.18 m/s at 4d (0.02 at 2d), scaled 0.034 / 0.045.
+  // rms speed of 0.10 m/s at 3d and 0.18 m/s at 4d (0.02 at 2d), scaled 0.034 / 0.047.
   float overlapRelaxation() const;
   // epsilon of eq 6 [1/m^2] (cfm_relaxation times the resting constraint scale).
   float cfmEpsilon() const;
