@@ -2,6 +2,7 @@
 import struct
 import threading
 import time
+from xmlrpc.client import ServerProxy
 
 import rosgraph
 import rospy
@@ -74,17 +75,30 @@ class Latest:
         self.sub.unregister()
 
 
+def _publisher_has(node_uri, topic, caller_id):
+    """Whether the node at node_uri lists an outbound connection on topic to caller_id
+    (the slave API's getBusInfo, as rosnode info reads it)."""
+    code, _, connections = ServerProxy(node_uri).getBusInfo(caller_id)
+    # Each: [connection id, destination caller id, direction, transport, topic, ...].
+    return code == 1 and any(len(c) >= 5 and c[1] == caller_id and c[2] == 'o' and c[4] == topic
+                             for c in connections)
+
+
 def wait_connected(subscriber, node=NODE, timeout=10.0):
-    """Waits until `subscriber` has a connection to `node`'s publisher of its topic. A
-    subscription is wired up some time after it is made: a line the node logs to /rosout
-    right after (e.g. on a ~reset the test calls next) would otherwise be missed."""
+    """Waits until `subscriber` has a connection to `node`'s publisher of its topic, as both
+    ends see it. A subscription is wired up some time after it is made: a line the node logs
+    to /rosout right after (e.g. on a ~reset the test calls next) would otherwise be missed.
+    The publisher's side is checked too: once (session 30, a loaded host) a /rosout line was
+    missed although this subscriber already counted the connection."""
     master = rosgraph.Master(rospy.get_name())
     deadline = time.time() + timeout
     while True:
         try:  # the node may not be up yet
-            if subscriber.impl.has_connection(master.lookupNode(node)):
+            uri = master.lookupNode(node)
+            if (subscriber.impl.has_connection(uri) and
+                    _publisher_has(uri, subscriber.resolved_name, rospy.get_name())):
                 return
-        except rosgraph.MasterError:
+        except (rosgraph.MasterError, OSError):
             pass
         if time.time() > deadline:
             raise AssertionError('%s is not connected to %s within %.1f s' %
