@@ -76,7 +76,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   const float self_density = mass * k.spiky(0.0f);
   const bool unilateral = params_.unilateral_constraint;
   const float eps = params_.cfmEpsilon();
-  const float relaxation = params_.overlapRelaxation();  // 1 at h = 2d
+  const float relaxation = overlap_relaxation_;  // 1 at h = 2d
   const NeighborArrays arrays{P, off, nbr, packed_->packPositions(predicted_)};
   float* const lambda_slots = packed_->lambdaSlots();  // (x*, lambda) for the delta-p pass
   const PairConstants pc{k.h, k.h2, 0.0f, mass * k.spiky_coef,

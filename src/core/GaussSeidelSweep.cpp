@@ -182,7 +182,7 @@ float PbfSolver::gaussSeidelSweep() {
                            1.0f / params_.rest_density,
                            grad_scale,
                            params_.cfmEpsilon(),
-                           params_.gauss_seidel_omega * params_.overlapRelaxation(),
+                           params_.gauss_seidel_omega * overlap_relaxation_,
                            params_.rest_density,
                            params_.unilateral_constraint,
                            params_.wall_density,

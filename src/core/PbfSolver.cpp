@@ -54,6 +54,7 @@ void PbfSolver::setParams(const SolverParams& params) {
                         ? std::make_unique<FreeSurfaceLend>(params.particle_spacing, params.supportRadius())
                         : nullptr;
   params_ = params;
+  overlap_relaxation_ = params_.overlapRelaxation();
   if (radius_changed) lists_valid_ = false;
   if (constraint_scale_changed) lambda_sum_dt_ = 0.0f;
   if (!params_.free_surface_lend) {

@@ -20,6 +20,12 @@ inline std::unique_ptr<pbf::PbfSolver> makeSolver(const pbf::Scene& scene) {
   return solver;
 }
 
+// The level a settled fluid's mass implies over the container's floor, at rho0 [m].
+inline double impliedLevel(const pbf::PbfSolver& solver, const pbf::Scene& scene) {
+  const Eigen::Vector2f floor = scene.container.sizes().head<2>();
+  return solver.size() * scene.solver.particleMass() / scene.solver.rest_density / (floor.x() * floor.y());
+}
+
 // Positions in the order the particles were given (the solver keeps them sorted by cell).
 inline std::vector<Eigen::Vector3f> positionsById(const pbf::PbfSolver& s) {
   std::vector<Eigen::Vector3f> out(s.size());

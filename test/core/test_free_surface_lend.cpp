@@ -25,12 +25,6 @@ std::size_t nearest(const pbf::PbfSolver& solver, const Eigen::Vector3f& at) {
   return best;
 }
 
-// The level a settled fluid's mass implies over the container's floor.
-double impliedLevel(const pbf::PbfSolver& solver, const pbf::Scene& scene) {
-  const Eigen::Vector2f floor = scene.container.sizes().head<2>();
-  return solver.size() * scene.solver.particleMass() / scene.solver.rest_density / (floor.x() * floor.y());
-}
-
 }  // namespace
 
 TEST(FreeSurfaceLend, TableIsCalibratedOnTheLatticeTopLayer) {
@@ -99,7 +93,7 @@ TEST(FreeSurfaceLend, RestingTankKeepsTheLevelItsVolumeImplies) {
     auto solver = pbf_test::makeSolver(scene);
     while (solver->time() < 1.5) ASSERT_FALSE(solver->step().failed);
     const double level = pbf::freeSurfaceHeight(solver->positions(), scene.solver.particle_spacing,
-                                                scene.container) / impliedLevel(*solver, scene);
+                                                scene.container) / pbf_test::impliedLevel(*solver, scene);
     std::printf("shipped tank at 0.03 %%, 1.5 s, lend %s: level %.4f of the implied\n",
                 lend ? "on" : "off", level);
     if (lend) {
@@ -127,7 +121,7 @@ TEST(FreeSurfaceLend, ABuriedParticleGivesItsLendBack) {
   auto solver = pbf_test::makeSolver(scene);
   while (solver->time() < 3.0) ASSERT_FALSE(solver->step().failed);
   const double level = pbf::freeSurfaceHeight(solver->positions(), scene.solver.particle_spacing,
-                                              scene.container) / impliedLevel(*solver, scene);
+                                              scene.container) / pbf_test::impliedLevel(*solver, scene);
   std::printf("block dropped on a block, d = 0.04 m, 3 s: level %.4f of the implied\n", level);
   EXPECT_NEAR(level, 1.0, 0.005);
 }

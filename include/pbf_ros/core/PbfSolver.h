@@ -194,6 +194,9 @@ class PbfSolver {
   float maxSpeedCap() const;
 
   SolverParams params_;
+  // params_.overlapRelaxation(), taken once per setParams instead of once per iteration (it
+  // looks the lattice's Fourier analysis up under a lock). 1 for the default support.
+  float overlap_relaxation_ = 1.0f;
   Eigen::AlignedBox3f container_{Eigen::Vector3f(-1, -1, -1), Eigen::Vector3f(1, 1, 1)};
   Eigen::Isometry3f container_pose_ = Eigen::Isometry3f::Identity();
   Eigen::Isometry3f prev_container_pose_ = Eigen::Isometry3f::Identity();  // at step start
