@@ -1,5 +1,6 @@
 #include "CandidateFilter.h"
 
+#include <algorithm>
 #include <array>
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -20,6 +21,24 @@ std::size_t keepScalar(const Candidates& c, float px, float py, float pz, float 
     kept += (dx * dx + dy * dy + dz * dz < r2) & (c.index[k] != self);
   }
   return kept;
+}
+
+// The squared distance of (px, py, pz) to the box, rounded as keepScalar rounds a distance.
+inline float squaredDistanceToBox(float px, float py, float pz, const float lo[3], const float hi[3]) {
+  const float gx = std::max(std::max(lo[0] - px, px - hi[0]), 0.0f);
+  const float gy = std::max(std::max(lo[1] - py, py - hi[1]), 0.0f);
+  const float gz = std::max(std::max(lo[2] - pz, pz - hi[2]), 0.0f);
+  return gx * gx + gy * gy + gz * gz;
+}
+
+std::size_t appendNearBoxScalar(const float* x, const float* y, const float* z, std::uint32_t begin,
+                                std::uint32_t end, const float lo[3], const float hi[3], float r2,
+                                const CandidateBuffer& out, std::size_t at) {
+  for (std::uint32_t k = begin; k < end; ++k) {
+    out.x[at] = x[k], out.y[at] = y[k], out.z[at] = z[k], out.index[at] = k;  // branch-free
+    at += squaredDistanceToBox(x[k], y[k], z[k], lo, hi) < r2;
+  }
+  return at;
 }
 
 #ifdef PBF_CANDIDATE_FILTER_AVX2
@@ -66,6 +85,39 @@ __attribute__((target("avx2,popcnt"))) std::size_t keepAvx2(const Candidates& c,
   return kept;
 }
 
+// How far p lies outside [l, h] along one axis, eight lanes at a time (as squaredDistanceToBox).
+__attribute__((target("avx2"))) inline __m256 gapAvx2(__m256 p, __m256 l, __m256 h) {
+  return _mm256_max_ps(_mm256_max_ps(_mm256_sub_ps(l, p), _mm256_sub_ps(p, h)), _mm256_setzero_ps());
+}
+
+// Eight points at a time, packed as keepAvx2 packs; lanes at or past `end` are never kept.
+__attribute__((target("avx2,popcnt"))) std::size_t appendNearBoxAvx2(
+    const float* x, const float* y, const float* z, std::uint32_t begin, std::uint32_t end,
+    const float lo[3], const float hi[3], float r2, const CandidateBuffer& out, std::size_t at) {
+  const __m256 lox = _mm256_set1_ps(lo[0]), loy = _mm256_set1_ps(lo[1]), loz = _mm256_set1_ps(lo[2]);
+  const __m256 hix = _mm256_set1_ps(hi[0]), hiy = _mm256_set1_ps(hi[1]), hiz = _mm256_set1_ps(hi[2]);
+  const __m256 vr2 = _mm256_set1_ps(r2);
+  const __m256i lane_offsets = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (std::uint32_t k = begin; k < end; k += 8) {
+    const __m256 px = _mm256_loadu_ps(x + k), py = _mm256_loadu_ps(y + k), pz = _mm256_loadu_ps(z + k);
+    const __m256 gx = gapAvx2(px, lox, hix), gy = gapAvx2(py, loy, hiy), gz = gapAvx2(pz, loz, hiz);
+    const __m256 d2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(gx, gx), _mm256_mul_ps(gy, gy)),
+                                    _mm256_mul_ps(gz, gz));
+    const std::uint32_t left = end - k;
+    const int valid = left >= 8 ? 0xff : (1 << left) - 1;
+    const int mask = _mm256_movemask_ps(_mm256_cmp_ps(d2, vr2, _CMP_LT_OQ)) & valid;
+    const __m256i lanes =
+        _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(kCompressTable[mask])));
+    const __m256i index = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(k)), lane_offsets);
+    _mm256_storeu_ps(out.x + at, _mm256_permutevar8x32_ps(px, lanes));
+    _mm256_storeu_ps(out.y + at, _mm256_permutevar8x32_ps(py, lanes));
+    _mm256_storeu_ps(out.z + at, _mm256_permutevar8x32_ps(pz, lanes));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.index + at), _mm256_permutevar8x32_epi32(index, lanes));
+    at += static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask)));
+  }
+  return at;
+}
+
 bool cpuRunsAvx2() {
   __builtin_cpu_init();
   return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
@@ -75,6 +127,9 @@ bool cpuRunsAvx2() {
 
 using FilterFn = std::size_t (*)(const Candidates&, float, float, float, float, std::uint32_t,
                                  std::uint32_t*);
+using BoxFilterFn = std::size_t (*)(const float*, const float*, const float*, std::uint32_t,
+                                    std::uint32_t, const float*, const float*, float,
+                                    const CandidateBuffer&, std::size_t);
 
 // Chosen on first use (a function-local static: thread-safe, no static-initialisation order).
 FilterFn chosenFilter() {
@@ -86,7 +141,30 @@ FilterFn chosenFilter() {
   return fn;
 }
 
+BoxFilterFn chosenBoxFilter() {
+#ifdef PBF_CANDIDATE_FILTER_AVX2
+  static const BoxFilterFn fn = cpuRunsAvx2() ? appendNearBoxAvx2 : appendNearBoxScalar;
+#else
+  static const BoxFilterFn fn = appendNearBoxScalar;
+#endif
+  return fn;
+}
+
 }  // namespace
+
+std::size_t appendCandidatesNearBox(const float* x, const float* y, const float* z,
+                                    std::uint32_t begin, std::uint32_t end, const float lo[3],
+                                    const float hi[3], float r2, const CandidateBuffer& out,
+                                    std::size_t at) {
+  return chosenBoxFilter()(x, y, z, begin, end, lo, hi, r2, out, at);
+}
+
+std::size_t appendCandidatesNearBoxScalar(const float* x, const float* y, const float* z,
+                                          std::uint32_t begin, std::uint32_t end, const float lo[3],
+                                          const float hi[3], float r2, const CandidateBuffer& out,
+                                          std::size_t at) {
+  return appendNearBoxScalar(x, y, z, begin, end, lo, hi, r2, out, at);
+}
 
 std::size_t keepCandidatesWithin(const Candidates& c, float px, float py, float pz, float r2,
                                  std::uint32_t self, std::uint32_t* out) {

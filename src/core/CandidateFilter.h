@@ -1,8 +1,9 @@
 #pragma once
-// The inner loop of the neighbour search (NeighborGrid::findNeighbors): of a cell's
-// candidates, keep those within the radius of one point, in candidate order.
+// The inner loops of the neighbour search (NeighborGrid::findNeighbors): gather a cell's
+// candidates, the points near the box around the cell's own points, and of those keep the
+// ones within the radius of one point, in candidate order.
 //
-// Two builds of one loop, chosen once per process: a scalar one, and on CPUs with AVX2 one
+// Two builds of each loop, chosen once per process: a scalar one, and on CPUs with AVX2 one
 // that tests eight candidates at a time and packs the kept ones with a permutation (a
 // "compress" store, which AVX2 lacks as an instruction). Both compute the squared distance
 // with the same multiplications and additions in the same order, without FMA, so they keep
@@ -29,11 +30,34 @@ constexpr std::size_t kCandidatePadding = 8;
 std::size_t keepCandidatesWithin(const Candidates& c, float px, float py, float pz, float r2,
                                  std::uint32_t self, std::uint32_t* out);
 
-// The scalar build, whatever the CPU (for tests: both builds must keep the same pairs).
+// Where a cell's candidate set is written: separate x, y, z arrays and the point indices.
+struct CandidateBuffer {
+  float *x, *y, *z;
+  std::uint32_t* index;
+};
+
+// The box [lo, hi] bounds one cell's points. Appends to `out`, from position `at` on, every
+// point k in [begin, end) of the arrays x, y, z whose squared distance to the box is below
+// r2, in index order, and returns the new count. A point within the radius of any point in
+// the box is always kept: the distance to the box is rounded the way keepCandidatesWithin
+// rounds the distance to a point, and it is never larger (float subtraction, products and
+// sums are monotonic). The arrays must be readable up to end rounded up to a multiple of
+// kCandidatePadding past begin, and `out` must have room for at + (end - begin) +
+// kCandidatePadding entries.
+std::size_t appendCandidatesNearBox(const float* x, const float* y, const float* z,
+                                    std::uint32_t begin, std::uint32_t end, const float lo[3],
+                                    const float hi[3], float r2, const CandidateBuffer& out,
+                                    std::size_t at);
+
+// The scalar builds, whatever the CPU (for tests: both builds must keep the same points).
+std::size_t appendCandidatesNearBoxScalar(const float* x, const float* y, const float* z,
+                                          std::uint32_t begin, std::uint32_t end, const float lo[3],
+                                          const float hi[3], float r2, const CandidateBuffer& out,
+                                          std::size_t at);
 std::size_t keepCandidatesWithinScalar(const Candidates& c, float px, float py, float pz, float r2,
                                        std::uint32_t self, std::uint32_t* out);
 
-// Which build runs: "avx2" or "scalar".
+// Which build runs (of both loops): "avx2" or "scalar".
 const char* candidateFilterVariant();
 
 }  // namespace pbf

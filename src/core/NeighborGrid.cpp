@@ -141,10 +141,19 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
   // The sorted points' coordinates as separate arrays: a cell's candidates are then copied
   // range by range with wide loads instead of picked out of each point one float at a time
   // (that transposition was most of this function's own time).
-  soa_x_.resize(n);
-  soa_y_.resize(n);
-  soa_z_.resize(n);
+  // Padded with far points: the candidate gathering reads whole groups past a range's end.
+  constexpr float kFar = std::numeric_limits<float>::infinity();
+  soa_x_.resize(n + kCandidatePadding);
+  soa_y_.resize(n + kCandidatePadding);
+  soa_z_.resize(n + kCandidatePadding);
   float *const sx = soa_x_.data(), *const sy = soa_y_.data(), *const sz = soa_z_.data();
+  std::fill(sx + n, sx + n + kCandidatePadding, kFar);
+  std::fill(sy + n, sy + n + kCandidatePadding, kFar);
+  std::fill(sz + n, sz + n + kCandidatePadding, kFar);
+  // The gathering keeps points within the radius of the box around a cell's points, a margin
+  // wider than the radius: its test is exact in itself, and the margin keeps it so should the
+  // compiler fuse a multiply-add in one of the two tests and not in the other.
+  const float r2_near_box = r2 * (1.0f + 1e-5f);
 
 #pragma omp parallel
   {
@@ -168,8 +177,10 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
     // every particle first (27 cells of candidates, ~40 kept); `used` is the filled part.
     if (buf.size() < (end - begin) * 48) buf.resize((end - begin) * 48);
     std::size_t used = 0;
-    // All particles of a cell share their 27-cell candidate set: gather it once per cell
-    // into a contiguous local copy (ascending index), then test every particle of the cell
+    // All particles of a cell share their candidate set: the points of the 27 cells around
+    // it that lie within the radius of the box around the cell's particles (about a third of
+    // them at h = 2d, where that box is half a cell wide). It is gathered once per cell into
+    // a contiguous local copy (ascending index), then every particle of the cell is tested
     // against it (CandidateFilter.h: eight candidates at a time where the CPU can).
     std::vector<std::uint32_t>& cand = scratch[t].candidates;
     std::vector<float>&cx = scratch[t].x, &cy = scratch[t].y, &cz = scratch[t].z;
@@ -197,32 +208,33 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
         else ranges[runs++] = ranges[k];
       }
       range_count = runs;
-      std::size_t m = 0;
-      for (int k = 0; k < range_count; ++k) m += ranges[k].end - ranges[k].begin;
-      // Padded to whole groups of the filter's width with points that are never near. The
-      // arrays only grow (resizing down and up again would zero them every cell), and are
-      // filled through raw pointers: a push_back per candidate stored the vector's end each
-      // time (a third of this function's own time).
-      const std::size_t padded = (m + kCandidatePadding - 1) / kCandidatePadding * kCandidatePadding;
-      if (cand.size() < padded) {
-        cand.resize(padded);
-        cx.resize(padded);
-        cy.resize(padded);
-        cz.resize(padded);
+      std::size_t all = 0;
+      for (int k = 0; k < range_count; ++k) all += ranges[k].end - ranges[k].begin;
+      // Room for every candidate and a group of the filter's width beyond. The arrays only
+      // grow (resizing down and up again would zero them every cell), and are filled through
+      // raw pointers: a push_back per candidate stored the vector's end each time.
+      const std::size_t room = all + 2 * kCandidatePadding;
+      if (cand.size() < room) {
+        cand.resize(room);
+        cx.resize(room);
+        cy.resize(room);
+        cz.resize(room);
       }
       std::uint32_t* const ci = cand.data();
       float *const px = cx.data(), *const py = cy.data(), *const pz = cz.data();
-      std::size_t c = 0;
-      for (int k = 0; k < range_count; ++k) {
-        const std::uint32_t b = ranges[k].begin, len = ranges[k].end - b;
-        std::copy(sx + b, sx + b + len, px + c);
-        std::copy(sy + b, sy + b + len, py + c);
-        std::copy(sz + b, sz + b + len, pz + c);
-        std::iota(ci + c, ci + c + len, b);
-        c += len;
+      float lo[3] = {sx[i], sy[i], sz[i]}, hi[3] = {sx[i], sy[i], sz[i]};
+      for (std::size_t p = i + 1; p < cell_end; ++p) {
+        lo[0] = std::min(lo[0], sx[p]), hi[0] = std::max(hi[0], sx[p]);
+        lo[1] = std::min(lo[1], sy[p]), hi[1] = std::max(hi[1], sy[p]);
+        lo[2] = std::min(lo[2], sz[p]), hi[2] = std::max(hi[2], sz[p]);
       }
-      constexpr float kFar = std::numeric_limits<float>::infinity();
-      for (; c < padded; ++c) ci[c] = 0, px[c] = py[c] = pz[c] = kFar;
+      const CandidateBuffer out{px, py, pz, ci};
+      std::size_t m = 0;
+      for (int k = 0; k < range_count; ++k)
+        m = appendCandidatesNearBox(sx, sy, sz, ranges[k].begin, ranges[k].end, lo, hi, r2_near_box, out, m);
+      // Padded to whole groups of the filter's width with points that are never near.
+      const std::size_t padded = (m + kCandidatePadding - 1) / kCandidatePadding * kCandidatePadding;
+      for (std::size_t c = m; c < padded; ++c) ci[c] = 0, px[c] = py[c] = pz[c] = kFar;
       const Candidates candidates{px, py, pz, ci, m};
       for (; i < cell_end; ++i) {
         offsets_[i] = static_cast<std::uint32_t>(used);  // block-local until the merge

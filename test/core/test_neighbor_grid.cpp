@@ -139,6 +139,77 @@ TEST(CandidateFilter, BothBuildsKeepTheSamePairs) {
   EXPECT_GT(kept_total, 100u);  // the test kept and dropped pairs
 }
 
+// Gathering a cell's candidates: both builds keep the same points, in index order, and
+// never drop a point that lies within the radius of a point in the box (the corners and
+// faces included, and points an ulp either side of the radius from them), nor keep one
+// farther than the radius from the whole box.
+TEST(CandidateFilter, GatheringNearABoxDropsNoPointNearTheBox) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-0.2f, 0.2f);
+  const float radius = 0.08f, r2 = radius * radius;
+  const float lo[3] = {-0.013f, 0.002f, -0.021f}, hi[3] = {0.017f, 0.031f, 0.0f};
+  std::vector<Eigen::Vector3f> inside;  // corners, face centres and random points of the box
+  for (int k = 0; k < 8; ++k) inside.emplace_back(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]);
+  for (int k = 0; k < 40; ++k) {
+    Eigen::Vector3f p;
+    for (int a = 0; a < 3; ++a) p[a] = lo[a] + (hi[a] - lo[a]) * (u(rng) + 0.2f) / 0.4f;
+    if (k < 6) p[k / 2] = k % 2 ? hi[k / 2] : lo[k / 2];
+    inside.push_back(p);
+  }
+  std::size_t near_total = 0, dropped_total = 0;
+  for (std::uint32_t count = 0; count < 300; count += 7) {
+    const std::uint32_t begin = count % 5;  // ranges that start inside a group of eight
+    const std::uint32_t end = begin + count;
+    std::vector<float> x(end + pbf::kCandidatePadding, INFINITY), y(x), z(x);
+    for (std::uint32_t k = begin; k < end; ++k) {
+      x[k] = u(rng), y[k] = u(rng), z[k] = u(rng);
+      if (k % 4 == 0) {  // on, or an ulp either side of, the sphere around a point of the box,
+                         // outwards along x: where it touches the box's x faces, a boundary case
+        const Eigen::Vector3f& p = inside[k / 4 % inside.size()];
+        const float off[3] = {std::nextafter(radius, 0.0f), radius, std::nextafter(radius, 1.0f)};
+        x[k] = p.x() == lo[0] ? p.x() - off[k % 3] : p.x() + off[k % 3], y[k] = p.y(), z[k] = p.z();
+      }
+    }
+    std::vector<float> wx(count + 2 * pbf::kCandidatePadding), wy(wx), wz(wx), sx(wx), sy(wx), sz(wx);
+    std::vector<std::uint32_t> wi(wx.size()), si(wx.size());
+    const std::size_t n_wide = pbf::appendCandidatesNearBox(x.data(), y.data(), z.data(), begin, end, lo, hi, r2,
+                                                            {wx.data(), wy.data(), wz.data(), wi.data()}, 0);
+    const std::size_t n_scalar = pbf::appendCandidatesNearBoxScalar(x.data(), y.data(), z.data(), begin, end, lo, hi,
+                                                                    r2, {sx.data(), sy.data(), sz.data(), si.data()}, 0);
+    ASSERT_EQ(n_wide, n_scalar) << "count " << count << " (" << pbf::candidateFilterVariant() << ")";
+    wi.resize(n_wide), si.resize(n_scalar);
+    EXPECT_EQ(wi, si) << "count " << count;
+    std::set<std::uint32_t> kept(si.begin(), si.end());
+    EXPECT_TRUE(std::is_sorted(si.begin(), si.end()));
+    for (std::size_t q = 0; q < n_scalar; ++q) {  // each kept point carries its own position
+      EXPECT_EQ(sx[q], x[si[q]]);
+      EXPECT_EQ(sy[q], y[si[q]]);
+      EXPECT_EQ(sz[q], z[si[q]]);
+    }
+    for (std::uint32_t k = begin; k < end; ++k) {
+      bool near = false;  // the neighbour search's own test, from any point in the box
+      for (const Eigen::Vector3f& p : inside) {
+        const float dx = x[k] - p.x(), dy = y[k] - p.y(), dz = z[k] - p.z();
+        near = near || dx * dx + dy * dy + dz * dz < r2;
+      }
+      double gap2 = 0.0;  // the exact distance to the box
+      for (float c : {x[k] - hi[0], lo[0] - x[k]}) gap2 += c > 0 ? double(c) * c : 0.0;
+      for (float c : {y[k] - hi[1], lo[1] - y[k]}) gap2 += c > 0 ? double(c) * c : 0.0;
+      for (float c : {z[k] - hi[2], lo[2] - z[k]}) gap2 += c > 0 ? double(c) * c : 0.0;
+      if (near) {
+        EXPECT_TRUE(kept.count(k)) << "point " << k << " near the box was dropped";
+      }
+      if (gap2 > 1.001 * r2) {
+        EXPECT_FALSE(kept.count(k)) << "point " << k << " far from the box was kept";
+      }
+      near_total += near;
+      dropped_total += !kept.count(k);
+    }
+  }
+  EXPECT_GT(near_total, 200u);  // the test kept and dropped points
+  EXPECT_GT(dropped_total, 200u);
+}
+
 TEST(NeighborGrid, MortonInterleavesBits) {
   EXPECT_EQ(pbf::NeighborGrid::morton3(1, 0, 0), 1u);
   EXPECT_EQ(pbf::NeighborGrid::morton3(0, 1, 0), 2u);
