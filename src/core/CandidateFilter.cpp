@@ -1,6 +1,5 @@
 #include "CandidateFilter.h"
 
-#include <algorithm>
 #include <array>
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -23,11 +22,16 @@ std::size_t keepScalar(const Candidates& c, float px, float py, float pz, float 
   return kept;
 }
 
+// The larger of a and b as the x86 max instruction takes it: b when either is NaN.
+inline float maxLikeMaxps(float a, float b) { return a > b ? a : b; }
+
+// How far p lies outside [l, h] along one axis; 0 when the box's bound is NaN (a NaN point of
+// the cell: then every candidate is kept, as the wide build keeps them).
+inline float gapToBox(float p, float l, float h) { return maxLikeMaxps(maxLikeMaxps(l - p, p - h), 0.0f); }
+
 // The squared distance of (px, py, pz) to the box, rounded as keepScalar rounds a distance.
 inline float squaredDistanceToBox(float px, float py, float pz, const float lo[3], const float hi[3]) {
-  const float gx = std::max(std::max(lo[0] - px, px - hi[0]), 0.0f);
-  const float gy = std::max(std::max(lo[1] - py, py - hi[1]), 0.0f);
-  const float gz = std::max(std::max(lo[2] - pz, pz - hi[2]), 0.0f);
+  const float gx = gapToBox(px, lo[0], hi[0]), gy = gapToBox(py, lo[1], hi[1]), gz = gapToBox(pz, lo[2], hi[2]);
   return gx * gx + gy * gy + gz * gz;
 }
 
@@ -85,7 +89,7 @@ __attribute__((target("avx2,popcnt"))) std::size_t keepAvx2(const Candidates& c,
   return kept;
 }
 
-// How far p lies outside [l, h] along one axis, eight lanes at a time (as squaredDistanceToBox).
+// How far p lies outside [l, h] along one axis, eight lanes at a time (as gapToBox).
 __attribute__((target("avx2"))) inline __m256 gapAvx2(__m256 p, __m256 l, __m256 h) {
   return _mm256_max_ps(_mm256_max_ps(_mm256_sub_ps(l, p), _mm256_sub_ps(p, h)), _mm256_setzero_ps());
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 
@@ -208,6 +209,24 @@ TEST(CandidateFilter, GatheringNearABoxDropsNoPointNearTheBox) {
   }
   EXPECT_GT(near_total, 200u);  // the test kept and dropped points
   EXPECT_GT(dropped_total, 200u);
+}
+
+// A NaN among a cell's points makes its box NaN: both builds then keep every point (dropping
+// them would cost the cell's other particles their neighbours; the point test after it drops
+// a NaN one).
+TEST(CandidateFilter, GatheringNearANaNBoxKeepsEveryPoint) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> x = {0.0f, 5.0f, nan, -3.0f, 0.1f, INFINITY, INFINITY, INFINITY}, y(x.size(), 0.0f), z(y);
+  const float lo[3] = {nan, 0.0f, 0.0f}, hi[3] = {nan, 0.0f, 0.0f};
+  for (bool wide : {true, false}) {
+    std::vector<float> ox(x.size() + 2 * pbf::kCandidatePadding), oy(ox), oz(ox);
+    std::vector<std::uint32_t> oi(ox.size());
+    const pbf::CandidateBuffer out{ox.data(), oy.data(), oz.data(), oi.data()};
+    const std::size_t kept = wide ? pbf::appendCandidatesNearBox(x.data(), y.data(), z.data(), 0, 5, lo, hi, 0.01f, out, 0)
+                                  : pbf::appendCandidatesNearBoxScalar(x.data(), y.data(), z.data(), 0, 5, lo, hi, 0.01f, out, 0);
+    oi.resize(kept);
+    EXPECT_EQ(oi, (std::vector<std::uint32_t>{0, 1, 2, 3, 4})) << (wide ? pbf::candidateFilterVariant() : "scalar");
+  }
 }
 
 TEST(NeighborGrid, MortonInterleavesBits) {
