@@ -135,23 +135,20 @@ using BoxFilterFn = std::size_t (*)(const float*, const float*, const float*, st
                                     std::uint32_t, const float*, const float*, float,
                                     const CandidateBuffer&, std::size_t);
 
-// Chosen on first use (a function-local static: thread-safe, no static-initialisation order).
-FilterFn chosenFilter() {
+// Both loops of one build, so that they are always wide or scalar together. Chosen on first
+// use (a function-local static: thread-safe, no static-initialisation order).
+struct Builds {
+  FilterFn keep;
+  BoxFilterFn near_box;
+};
+const Builds& chosenBuilds() {
+  static const Builds builds = [] {
 #ifdef PBF_CANDIDATE_FILTER_AVX2
-  static const FilterFn fn = cpuRunsAvx2() ? keepAvx2 : keepScalar;
-#else
-  static const FilterFn fn = keepScalar;
+    if (cpuRunsAvx2()) return Builds{keepAvx2, appendNearBoxAvx2};
 #endif
-  return fn;
-}
-
-BoxFilterFn chosenBoxFilter() {
-#ifdef PBF_CANDIDATE_FILTER_AVX2
-  static const BoxFilterFn fn = cpuRunsAvx2() ? appendNearBoxAvx2 : appendNearBoxScalar;
-#else
-  static const BoxFilterFn fn = appendNearBoxScalar;
-#endif
-  return fn;
+    return Builds{keepScalar, appendNearBoxScalar};
+  }();
+  return builds;
 }
 
 }  // namespace
@@ -160,7 +157,7 @@ std::size_t appendCandidatesNearBox(const float* x, const float* y, const float*
                                     std::uint32_t begin, std::uint32_t end, const float lo[3],
                                     const float hi[3], float r2, const CandidateBuffer& out,
                                     std::size_t at) {
-  return chosenBoxFilter()(x, y, z, begin, end, lo, hi, r2, out, at);
+  return chosenBuilds().near_box(x, y, z, begin, end, lo, hi, r2, out, at);
 }
 
 std::size_t appendCandidatesNearBoxScalar(const float* x, const float* y, const float* z,
@@ -172,7 +169,7 @@ std::size_t appendCandidatesNearBoxScalar(const float* x, const float* y, const 
 
 std::size_t keepCandidatesWithin(const Candidates& c, float px, float py, float pz, float r2,
                                  std::uint32_t self, std::uint32_t* out) {
-  return chosenFilter()(c, px, py, pz, r2, self, out);
+  return chosenBuilds().keep(c, px, py, pz, r2, self, out);
 }
 
 std::size_t keepCandidatesWithinScalar(const Candidates& c, float px, float py, float pz, float r2,
@@ -182,7 +179,7 @@ std::size_t keepCandidatesWithinScalar(const Candidates& c, float px, float py, 
 
 const char* candidateFilterVariant() {
 #ifdef PBF_CANDIDATE_FILTER_AVX2
-  return chosenFilter() == keepAvx2 ? "avx2" : "scalar";
+  return chosenBuilds().keep == keepAvx2 ? "avx2" : "scalar";
 #else
   return "scalar";
 #endif

@@ -213,7 +213,7 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
       // Room for every candidate and a group of the filter's width beyond. The arrays only
       // grow (resizing down and up again would zero them every cell), and are filled through
       // raw pointers: a push_back per candidate stored the vector's end each time.
-      const std::size_t room = all + 2 * kCandidatePadding;
+      const std::size_t room = all + kCandidatePadding;
       if (cand.size() < room) {
         cand.resize(room);
         cx.resize(room);
