@@ -70,6 +70,8 @@ SolidBoundaries::SolidBoundaries(const Eigen::AlignedBox3f& container,
       lattice_(&lattice),
       reach_(lattice.reach()),
       radius_(particle_radius) {
+  lowest_ = box_.min() + Eigen::Vector3f::Constant(radius_);
+  highest_ = box_.max() - Eigen::Vector3f::Constant(radius_);
   near_.resize(obstacles.size());
   for (std::size_t k = 0; k < near_.size(); ++k) near_[k] = static_cast<std::uint32_t>(k);
 }
@@ -85,8 +87,8 @@ void SolidBoundaries::keepOnlyObstaclesNear(const Eigen::AlignedBox3f& fluid) {
   }
 }
 
-bool SolidBoundaries::density(const Eigen::Vector3f& p, float& fraction,
-                              Eigen::Vector3f& gradient) const {
+bool SolidBoundaries::densityNearObstacles(const Eigen::Vector3f& p, float& fraction,
+                                           Eigen::Vector3f& gradient) const {
   bool near = false;
   for (const std::uint32_t k : near_) {
     const Obstacle& o = (*obstacles_)[k];
