@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <cmath>
+#include <limits>
+
 #include "SolverTestUtil.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/LatticeBoundary.h"
@@ -65,6 +68,38 @@ TEST(FarSolids, OnlySolidsWithinReachOfTheFluidTakePart) {
   // pushed out: it was left out.
   const Eigen::Vector3f inside_far = obstacles[2].pose.translation();
   EXPECT_EQ(solids.project(inside_far), inside_far);
+}
+
+// With no obstacle near, projecting is an inline clamp into the container (Boundaries.h).
+// It must do exactly what the general path does, and leave a NaN for the step to reject.
+TEST(FarSolids, WithNoSolidNearProjectingIsTheSameClampAndKeepsNaN) {
+  const pbf::LatticeBoundary lattice(0.02f, 0.04f);
+  const Eigen::AlignedBox3f container(Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(1, 1, 1));
+  std::vector<pbf::Obstacle> obstacles(1);
+  obstacles[0].shape = pbf::Obstacle::Shape::Sphere;
+  obstacles[0].radius = 0.01f;
+  obstacles[0].pose.translation() = Eigen::Vector3f(0.9f, 0.9f, 0.9f);  // near the fluid, far from the points
+  pbf::SolidBoundaries clamp_only(container, Eigen::Isometry3f::Identity(), obstacles, lattice, 0.01f);
+  clamp_only.keepOnlyObstaclesNear(Eigen::AlignedBox3f(Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(0.2f, 0.2f, 0.2f)));
+  const pbf::SolidBoundaries general(container, Eigen::Isometry3f::Identity(), obstacles, lattice, 0.01f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<Eigen::Vector3f> points = {{0.1f, 0.2f, 0.3f},   {-0.5f, 0.2f, 1.7f}, {0.005f, 0.995f, 0.5f},
+                                               {nan, 0.2f, 0.3f},    {0.1f, nan, 2.0f},   {-1.0f, -1.0f, nan},
+                                               {0.01f, 0.99f, 0.0f}};
+  for (const Eigen::Vector3f& p : points) {
+    const Eigen::Vector3f a = clamp_only.project(p), b = general.project(p);
+    if (!p.allFinite()) {  // still not finite, for the step to reject
+      EXPECT_TRUE(std::isnan(a.x()) || std::isnan(a.y()) || std::isnan(a.z())) << p.transpose();
+      continue;
+    }
+    EXPECT_EQ(a, b) << p.transpose();
+    EXPECT_TRUE((a.array() >= 0.01f).all() && (a.array() <= 0.99f).all()) << a.transpose();
+  }
+  EXPECT_EQ(clamp_only.project(Eigen::Vector3f(-0.5f, 0.2f, 1.7f)), Eigen::Vector3f(0.01f, 0.2f, 0.99f));
+  float fraction = 0.0f;
+  Eigen::Vector3f gradient = Eigen::Vector3f::Zero();
+  EXPECT_FALSE(clamp_only.density(Eigen::Vector3f(0.9f, 0.9f, 0.9f), fraction, gradient));
+  EXPECT_TRUE(general.density(Eigen::Vector3f(0.9f, 0.9f, 0.92f), fraction, gradient));
 }
 
 }  // namespace
