@@ -38,6 +38,7 @@ BIN="$BUILD/devel/lib/pbf_ros"
 # default spin-waiting makes small steps many times slower and the timings meaningless.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 echo "[bench] output in $OUT (OMP_WAIT_POLICY=$OMP_WAIT_POLICY, load: $(cut -d' ' -f1-3 /proc/loadavg))"
+bash "$(dirname "$0")/busy_processes.sh" "[bench]"
 
 nice -n 5 "$BIN/pbf_bench" --out "$OUT" "${QUICK[@]}" | tee "$OUT/pbf_bench.log"
 stress_status=0

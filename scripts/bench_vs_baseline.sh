@@ -133,6 +133,7 @@ rm -f "$OUT"/*.json "$OUT"/*.txt
 # --- alternating runs -----------------------------------------------------------------
 # Sleep-waiting OpenMP threads, as the node's launch file uses.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
+bash "$(dirname "$0")/busy_processes.sh" "[bench]"
 echo "[bench] load before: $(cut -d' ' -f1-3 /proc/loadavg)"
 if [ "$MODE" = dambreak ]; then
   SCENE="$ROOT/config/scenes/dam_break_1m3.yaml"

@@ -128,6 +128,7 @@ start_node() {  # $1: set-up name (for the log)
   fi
 }
 
+bash "$(dirname "$0")/busy_processes.sh" "[rtf]" >&2
 for setup in $ONLY; do
   start_node "$setup"
   # Wait for the node's statistics, then subscribe what the set-up asks for.
