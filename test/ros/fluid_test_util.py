@@ -39,7 +39,7 @@ class Latest:
                     return self.msg
                 remaining = deadline - time.time()
                 if remaining <= 0:
-                    raise AssertionError('no suitable message within %.1f s' % timeout)
+                    raise AssertionError(self._nothing_suitable(timeout))
                 self._cond.wait(remaining)
 
     def settled(self, key, timeout=10.0):
@@ -65,11 +65,27 @@ class Latest:
                 self._cond.wait(remaining)
 
     def current_or_next(self, timeout=10.0, condition=lambda m: True):
-        """The latest message if it satisfies condition (latched topics), else the next one."""
+        """The latest message if it satisfies condition (latched topics), else the next one
+        that does. One lock throughout: a message arriving between the look at the latest
+        and the wait is still seen (a latched topic may never publish again)."""
+        deadline = time.time() + timeout
         with self._cond:
-            if self.msg is not None and condition(self.msg):
-                return self.msg
-        return self.next(timeout, condition)
+            checked = None  # the count whose message has been checked
+            while True:
+                if self.msg is not None and self.count != checked:
+                    if condition(self.msg):
+                        return self.msg
+                    checked = self.count
+                remaining = deadline - time.time()
+                if remaining <= 0:
+                    raise AssertionError(self._nothing_suitable(timeout))
+                self._cond.wait(remaining)
+
+    def _nothing_suitable(self, timeout):
+        """What a timed-out wait saw, for the failure message."""
+        return 'no suitable message on %s within %.1f s (%d received, the latest %s)' % (
+            self.sub.resolved_name, timeout, self.count,
+            'none' if self.msg is None else repr(self.msg)[:400])
 
     def close(self):
         self.sub.unregister()
