@@ -81,6 +81,12 @@ class Latest:
                     raise AssertionError(self._nothing_suitable(timeout))
                 self._cond.wait(remaining)
 
+    def connected(self, timeout=10.0):
+        """Waits for a latched topic's current message: the connection is then open, so a
+        change made next travels over it instead of racing the connection's set-up (the
+        node publishes a one-off change of a latched topic once)."""
+        return self.current_or_next(timeout)
+
     def _nothing_suitable(self, timeout):
         """What a timed-out wait saw, for the failure message."""
         return 'no suitable message on %s within %.1f s (%d received, the latest %s)' % (

@@ -140,6 +140,7 @@ class RobotSolidsTest(unittest.TestCase):
         # the probe becomes a sphere.
         log = RosoutRecorder()
         marker_topic = Latest(NODE + '/markers', MarkerArray)
+        marker_topic.connected()
         urdf = rospy.get_param('/robot_description')
         rospy.set_param('/robot_description', urdf.replace(
             '<box size="0.16 0.16 0.16"/>', '<sphere radius="0.08"/>'))

@@ -84,13 +84,6 @@ def rotate(q, v):
     return tuple(v[i] + 2.0 * w * ux[i] + 2.0 * uux[i] for i in range(3))
 
 
-def connected_before_the_change(tf_static):
-    """Waits for /tf_static's latched message, so the change the test makes next travels
-    over an open connection instead of racing the connection's set-up (a latched topic
-    publishes the change once; CI once waited 10 s for it in vain, not reproduced here)."""
-    tf_static.current_or_next(timeout=10.0)
-
-
 def node_pid():
     """The process of this test's pbf_node (named `fluid`)."""
     for entry in os.listdir('/proc'):
@@ -267,7 +260,7 @@ class SurfaceTopicsTest(unittest.TestCase):
         client = dynamic_reconfigure.client.Client(NODE, timeout=20.0)
         tf_static = Latest('/tf_static', TFMessage)
         try:
-            connected_before_the_change(tf_static)
+            tf_static.connected()
             config = client.update_configuration({'camera_position_x': 3.0,
                                                   'camera_position_y': 0.25,
                                                   'camera_position_z': 0.4,
@@ -294,7 +287,7 @@ class SurfaceTopicsTest(unittest.TestCase):
         client = dynamic_reconfigure.client.Client(NODE, timeout=20.0)
         tf_static = Latest('/tf_static', TFMessage)
         try:
-            connected_before_the_change(tf_static)
+            tf_static.connected()
             config = client.update_configuration({'camera_auto': True,
                                                   'scene': 'hydrostatic_tank'})
             self.assertTrue(config['camera_auto'])
