@@ -51,7 +51,7 @@ class NodeControlTest(unittest.TestCase):
         """The (paused) fluid's positions: a state is published once, and again to newcomers."""
         clouds = cloud_listener()
         try:
-            return sorted(p[:3] for p in cloud_points(clouds.next(timeout=10.0)))
+            return sorted(p[:3] for p in cloud_points(clouds.current_or_next(timeout=10.0)))
         finally:
             clouds.close()
 

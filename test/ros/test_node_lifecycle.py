@@ -144,7 +144,10 @@ class NodeLifecycleTest(unittest.TestCase):
             wait_for(lambda: any(n == '/fluid/set_parameters' for n, _ in
                                  api.getSystemState()[2]), 30, 'the node to register')
             master.stop()
-            time.sleep(1.5)  # the node's watchdog (1 s) notices the master is gone
+            # The node's watchdog (1 s) notices the master is gone: wait for it to say so, not
+            # for a fixed time (a loaded machine may run the watchdog late).
+            wait_for(lambda: 'master is unreachable' in node.output(), 20,
+                     'the node to notice the master is gone')
             master.start()
             code = node.finish(timeout=30)
             self.assertEqual(code, 2, node.output())

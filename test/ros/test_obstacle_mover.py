@@ -51,7 +51,8 @@ class ObstacleMoverTest(unittest.TestCase):
         return self.markers.current_or_next(timeout=timeout, condition=there)
 
     def test_1_only_the_free_obstacle_can_be_moved(self):
-        init = Latest(NODE + '/obstacle_markers/update_full', InteractiveMarkerInit).next(timeout=30.0)
+        init = Latest(NODE + '/obstacle_markers/update_full', InteractiveMarkerInit).current_or_next(
+            timeout=30.0)
         self.assertEqual([m.name for m in init.markers], ['obstacle_0'])
         self.assertEqual(init.markers[0].header.frame_id, 'fluid_domain')
         _, subscribers, _ = rosgraph.Master('/test').getSystemState()[:3]

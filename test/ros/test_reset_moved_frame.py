@@ -53,7 +53,7 @@ class ResetMovedFrameTest(unittest.TestCase):
         self.assertTrue(response.success, response.message)
         clouds = cloud_listener()  # a newcomer gets the (paused) state
         try:
-            points = [p[:3] for p in cloud_points(clouds.next(timeout=20.0))]
+            points = [p[:3] for p in cloud_points(clouds.current_or_next(timeout=20.0))]
         finally:
             clouds.close()
         self.assertGreater(len(points), 100)

@@ -101,7 +101,7 @@ class SourcesAndDrainsTest(unittest.TestCase):
         # No particle of the paused cloud sits on another: the block went only where free.
         clouds = cloud_listener()
         try:
-            cloud = clouds.next(timeout=10.0)
+            cloud = clouds.current_or_next(timeout=10.0)  # sent once, maybe before the wait
         finally:
             clouds.close()
         points = [p[:3] for p in cloud_points(cloud)]
