@@ -17,10 +17,12 @@ pressure drives it: the lattice rearranges however well the solve converges. Thi
 linear, uniform-pressure criterion (no walls, no free surface); its use here is to compare
 kernels and lattices, in units of d = 1 at the number density of one particle per d^3.
 
-Usage: scripts/lattice_stability.py [h/d ...]   (default 2, the shipped support radius)
+Usage: scripts/lattice_stability.py [--blend A ...] [h/d ...]
+  h/d: support radii (default 2, the shipped one). --blend A adds the kernel
+  A * Spiky + (1 - A) * Wendland C2 (both normalised, so the blend is too).
 """
+import argparse
 import itertools
-import sys
 
 import numpy as np
 
@@ -36,6 +38,14 @@ def wendland_c2(h):
     c = 21.0 / (2.0 * np.pi * h ** 3)
     return (lambda r: -20.0 * c * (r / h) * (1 - r / h) ** 3 / h,
             lambda r: c * (-20.0 * (1 - r / h) ** 3 + 60.0 * (r / h) * (1 - r / h) ** 2) / h ** 2)
+
+
+def blend(a):
+    """a * Spiky + (1 - a) * Wendland C2: W'(r), W''(r)."""
+    def kernel(h):
+        (s1, s2), (w1, w2) = spiky(h), wendland_c2(h)
+        return (lambda r: a * s1(r) + (1 - a) * w1(r)), (lambda r: a * s2(r) + (1 - a) * w2(r))
+    return kernel
 
 
 def lattice(name, reach):
@@ -79,10 +89,16 @@ def worst_mode(points, h, kernel, samples=24):
 
 
 def main():
-    factors = [float(a) for a in sys.argv[1:]] or [2.0]
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("factors", nargs="*", type=float, default=[2.0], help="h / d (default 2)")
+    parser.add_argument("--blend", type=float, action="append", default=[],
+                        help="also A * Spiky + (1 - A) * Wendland C2 (repeatable)")
+    args = parser.parse_args()
+    kernels = [("Spiky", spiky), ("Wendland C2", wendland_c2)]
+    kernels += [(f"{a:g} Spiky", blend(a)) for a in args.blend]
     print("smallest eigenvalue of D(k) (negative: the lattice rearranges under pressure)")
-    for h in factors:
-        for kernel_name, kernel in (("Spiky", spiky), ("Wendland C2", wendland_c2)):
+    for h in args.factors:
+        for kernel_name, kernel in kernels:
             for lattice_name in ("simple cubic", "face-centred cubic"):
                 value, k = worst_mode(lattice(lattice_name, h), h, kernel)
                 print(f"h = {h:g} d  {kernel_name:12s} {lattice_name:19s} {value:+.3e}"

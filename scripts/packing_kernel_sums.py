@@ -9,7 +9,8 @@ constraint, a column that rearranges into such a packing falls: this prints by h
 Wendland C2 (doc/experiments/wendland_density_kernel.patch), on which the cubic lattice is
 the densest packing at rho0 instead.
 
-  scripts/packing_kernel_sums.py [--support H]   (H = h / d, default 2, the shipped factor)
+  scripts/packing_kernel_sums.py [--support H] [--blend A ...]
+  H = h / d (default 2, the shipped factor); --blend A adds A * Spiky + (1 - A) * Wendland C2.
 """
 import argparse
 import itertools
@@ -42,7 +43,10 @@ def kernel_sum(kernel, basis, cell, h, scale=1.0):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--support", type=float, default=2.0, help="h / d (default 2)")
-    h = parser.parse_args().support
+    parser.add_argument("--blend", type=float, action="append", default=[],
+                        help="also A * Spiky + (1 - A) * Wendland C2 (repeatable)")
+    args = parser.parse_args()
+    h = args.support
     eye = np.eye(3)
     hexagonal = np.array([[1.0, 0.0, 0.0], [0.5, np.sqrt(3) / 2, 0.0], [0.0, 0.0, np.sqrt(8.0 / 3.0)]])
     packings = {
@@ -51,7 +55,10 @@ def main():
         "face-centred cubic": ([np.zeros(3), np.array([0.5, 0.5, 0]), np.array([0.5, 0, 0.5]), np.array([0, 0.5, 0.5])], eye),
         "hexagonal close-packed": ([np.zeros(3), np.array([1 / 3, 1 / 3, 0.5])], hexagonal),
     }
-    for kernel_name, kernel in (("Spiky (the solver's)", spiky), ("Wendland C2 (the experiment)", wendland_c2)):
+    kernels = [("Spiky (the solver's)", spiky), ("Wendland C2 (the experiment)", wendland_c2)]
+    kernels += [(f"{a:g} Spiky + {1 - a:g} Wendland C2", lambda r, h, a=a: a * spiky(r, h) + (1 - a) * wendland_c2(r, h))
+                for a in args.blend]
+    for kernel_name, kernel in kernels:
         cubic = kernel_sum(kernel, *packings["simple cubic (the start lattice)"], h)
         print(f"{kernel_name}, h = {h:g} d; sums times d^3 at one particle per d^3 (the continuum's: 1, plus the self term {float(kernel(0.0, h)):.4f})")
         print(f"{'packing':36s} {'sum':>8s} {'vs cubic':>9s} {'number density at the cubic sum':>32s}")
