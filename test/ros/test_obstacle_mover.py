@@ -66,6 +66,8 @@ class ObstacleMoverTest(unittest.TestCase):
         deadline = time.time() + 10.0
         while pub.get_num_connections() == 0 and time.time() < deadline:
             time.sleep(0.05)
+        self.assertGreater(pub.get_num_connections(), 0,
+                           'the node never subscribed to ' + pub.resolved_name)
         start = self.stats.next(timeout=10.0)
         pub.publish(pose_stamped(0.3, 0.15, 0.06))
         self.wait_for_sphere_at(0.3, 0.15, 0.06)
@@ -99,6 +101,8 @@ class ObstacleMoverTest(unittest.TestCase):
         deadline = time.time() + 10.0
         while feedback.get_num_connections() == 0 and time.time() < deadline:
             time.sleep(0.05)
+        self.assertGreater(feedback.get_num_connections(), 0,
+                           'the node never subscribed to ' + feedback.resolved_name)
         f = InteractiveMarkerFeedback()
         f.client_id = '/rviz/InteractiveMarkers'
         f.marker_name = 'obstacle_0'
