@@ -37,3 +37,9 @@ catkin_add_gtest(test_surge_front test/tools/test_surge_front.cpp)
 if(TARGET test_surge_front)
   target_link_libraries(test_surge_front pbf_bench_support pbf_core gtest_main)
 endif()
+
+# The scaling study's protocol, and pbf_bench's --set reaching it.
+catkin_add_gtest(test_scaling_study test/tools/test_scaling_study.cpp)
+if(TARGET test_scaling_study)
+  target_link_libraries(test_scaling_study pbf_bench_support pbf_core gtest_main)
+endif()

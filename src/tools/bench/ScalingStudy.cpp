@@ -25,11 +25,21 @@ double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+pbf::Scene scalingScene(const BenchOptions& o, int count) {
+  const float spacing = static_cast<float>(std::cbrt(0.16 / count));
+  pbf::Scene scene = damBreakScene(o.scenes_dir, spacing);
+  scene.solver.adaptive_time_step = false;
+  scene.solver.time_step = 1.0f / 400.0f;
+  scene.solver.min_iterations = scene.solver.max_iterations = 4;
+  scene.solver.density_tolerance = 0.0f;
+  // --set comes last: it may change the protocol above too (e.g. the number of iterations).
+  if (!o.solver_overrides.empty()) pbf::applySolverYaml(o.solver_overrides, "--set", scene.solver);
+  return scene;
+}
+
 void runScalingStudy(const BenchOptions& o) {
   std::printf("\n== scaling: ms per step vs particles and threads ==\n");
-  // The dam-break column (0.4 x 0.5 x 0.8 m = 0.16 m^3) at the spacing giving N particles,
-  // timed at rest right after release: every particle has its full neighbourhood, the
-  // expensive case. 4 fixed iterations, fixed dt 1/400 s (as pbf_step_benchmark).
+  if (!o.solver_overrides.empty()) std::printf("solver overrides:\n%s", o.solver_overrides.c_str());
   const std::vector<int> counts = o.quick ? std::vector<int>{10000, 20000, 40000}
                                           : std::vector<int>{10000, 20000, 40000, 80000, 160000, 320000};
   const int warmup = 2, timed = o.quick ? 3 : 5;
@@ -44,13 +54,7 @@ void runScalingStudy(const BenchOptions& o) {
     std::vector<double> ns, ms;
     for (int count : counts) {
       omp_set_num_threads(t);
-      const float spacing = static_cast<float>(std::cbrt(0.16 / count));
-      pbf::Scene scene = damBreakScene(o.scenes_dir, spacing);
-      scene.solver.adaptive_time_step = false;
-      scene.solver.time_step = 1.0f / 400.0f;
-      scene.solver.min_iterations = scene.solver.max_iterations = 4;
-      scene.solver.density_tolerance = 0.0f;
-      auto solver = makeSolver(scene);
+      auto solver = makeSolver(scalingScene(o, count));
       Progress progress("scaling " + std::to_string(count / 1000) + "k, " + std::to_string(t) + " thread(s)",
                         o.progress);
       std::vector<double> total, nb, solve, visc, other;

@@ -5,10 +5,17 @@
 #include <vector>
 
 #include "bench/BenchOptions.h"
+#include "pbf_ros/core/Scene.h"
 
 namespace pbf_bench {
 
 void runScalingStudy(const BenchOptions& options);
+
+// The dam-break column (0.4 x 0.5 x 0.8 m = 0.16 m^3) at the spacing giving about `count`
+// particles, timed at rest right after release: every particle has its full neighbourhood,
+// the expensive case. 4 fixed iterations, fixed dt 1/400 s (as pbf_step_benchmark); the
+// options' --set overrides applied last.
+pbf::Scene scalingScene(const BenchOptions& options, int count);
 
 // Least-squares slope of log(y) against log(x).
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y);
