@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "SolverTestUtil.h"
@@ -166,6 +167,37 @@ TEST(Boundaries, WallFrictionSlowsSlidingAlongTheFloor) {
   const double free_slip = slide(0.0f), sticky = slide(0.5f);
   std::printf("mean vx after 0.2 s: free slip %.3f m/s, friction 0.5: %.3f m/s\n", free_slip, sticky);
   EXPECT_LT(sticky, 0.5 * free_slip);
+}
+
+// Issue 9: "whatever friction exists, the water at the back wall drains with the column (no
+// film stays glued to a wall)". With the old per-step friction a film stayed 0.5 m high at
+// the dam break's back wall while the column collapsed. The friction is now a rate
+// (Calibration.WallFrictionIsTheSameAtEveryTimeStep): it slows the water along every
+// wall alike, so the water at the back wall stands no higher than the water beside it.
+TEST(Boundaries, WaterAtTheBackWallDrainsWithTheColumn) {
+  for (const float friction : {0.0f, 0.3f}) {
+    pbf::Scene scene = pbf_test::loadScene("dam_break");
+    scene.solver.particle_spacing = 0.04f;
+    scene.solver.wall_friction = friction;
+    auto solver = pbf_test::makeSolver(scene);
+    const float d = scene.solver.particle_spacing, back = scene.container.min().x();
+    double first_top = 0.0, last_top = 0.0;
+    for (const double t : {0.3, 0.4, 0.5, 0.6}) {
+      while (solver->time() < t) solver->step();
+      float at_wall = 0.0f, beside = 0.0f;  // highest particle within 1.5 d of the wall, 3-6 d from it
+      for (const Eigen::Vector3f& p : solver->positions()) {
+        const float x = p.x() - back;
+        if (x < 1.5f * d) at_wall = std::max(at_wall, p.z());
+        else if (x > 3.0f * d && x < 6.0f * d) beside = std::max(beside, p.z());
+      }
+      std::printf("friction %.1f, t %.1f s: water at the back wall up to %.3f m, 3-6 d from it %.3f m\n",
+                  friction, t, at_wall, beside);
+      EXPECT_LT(at_wall - beside, 1.5f * d) << "friction " << friction << ", t " << t;
+      if (t == 0.3) first_top = at_wall;
+      last_top = at_wall;
+    }
+    EXPECT_LT(last_top, first_top - 5.0 * d) << "friction " << friction << ": the back wall's water did not drain";
+  }
 }
 
 }  // namespace
