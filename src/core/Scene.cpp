@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -75,6 +76,36 @@ std::string keyName(const YAML::Node& key, const std::string& origin, const std:
                      "' is not a plain name (got a " + (key.IsSequence() ? "list" : "map") + ")");
   }
   return key.Scalar();
+}
+
+// A key given twice in one map is an error in YAML that yaml-cpp lets through, and its
+// readers disagree on which value wins (a lookup takes the first, a loop over the map
+// applies both, so the last): refused by name, wherever it is. The walk is bounded in depth
+// and in nodes: aliases share nodes, so a small file can name a node a billion times
+// (a scene of 1000 blocks has ~10^4 nodes).
+void refuseDuplicateKeys(const YAML::Node& node, const std::string& origin, const std::string& path,
+                         std::size_t& budget, int depth = 0) {
+  constexpr int kMaxDepth = 64;  // a scene is a few levels deep
+  if (depth > kMaxDepth) throw SceneError(origin + ": '" + path + "' is nested deeper than 64 levels");
+  if (budget-- == 0) throw SceneError(origin + ": more than 10^6 YAML nodes (aliases repeated?)");
+  if (node.IsMap()) {
+    std::set<std::string> seen;
+    for (const auto& kv : node) {
+      if (!kv.first.IsScalar()) continue;  // keyName() refuses it where the key is read
+      const std::string& k = kv.first.Scalar();
+      if (!seen.insert(k).second)
+        throw SceneError(origin + ": key '" + (path.empty() ? k : path + "." + k) + "' is given twice");
+      refuseDuplicateKeys(kv.second, origin, path.empty() ? k : path + "." + k, budget, depth + 1);
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      refuseDuplicateKeys(node[i], origin, path + "[" + std::to_string(i) + "]", budget, depth + 1);
+  }
+}
+
+void refuseDuplicateKeys(const YAML::Node& root, const std::string& origin) {
+  std::size_t budget = 1000000;
+  refuseDuplicateKeys(root, origin, "", budget);
 }
 
 std::string readString(const YAML::Node& n, const std::string& origin, const std::string& key) {
@@ -193,7 +224,13 @@ FluidBlock readBlock(const YAML::Node& n, const std::string& origin, const std::
   } else {
     fail(origin, key, "a 'box' or a 'sphere'");
   }
-  if (const YAML::Node v = n["velocity"]) b.velocity = readVec3(v, origin, key + ".velocity");
+  if (const YAML::Node v = n["velocity"]) {
+    b.velocity = readVec3(v, origin, key + ".velocity");
+    // As for ~emit and the emitters: faster is a typo, and a speed near float's range would
+    // make the first step's kinetic energy infinite.
+    if (!(b.velocity.norm() <= kMaxEmitterSpeed))
+      fail(origin, key + ".velocity", "a speed of at most " + std::to_string(int(kMaxEmitterSpeed)) + " m/s");
+  }
   if (n["frame"]) {
     if (!n["frame"].IsScalar() || n["frame"].Scalar().empty()) fail(origin, key + ".frame", "a tf frame name");
     b.frame = n["frame"].Scalar();
@@ -418,6 +455,7 @@ Scene parseScene(const std::string& text, const std::string& origin) {
   } catch (const YAML::Exception& e) {
     throw SceneError(origin + ": not valid YAML: " + e.what());
   }
+  refuseDuplicateKeys(root, origin);
   if (!root.IsMap()) throw SceneError(origin + ": expected a map at the top level");
   checkKeys(root, {"name", "description", "container", "container_frame", "domain_pose", "fluid",
                    "obstacles", "emitters", "drains", "solver"},
@@ -504,6 +542,7 @@ void applySolverYaml(const std::string& text, const std::string& origin, SolverP
   } catch (const YAML::Exception& e) {
     throw SceneError(origin + ": not valid YAML: " + e.what());
   }
+  refuseDuplicateKeys(root, origin);
   SolverParams copy = params;  // all or nothing
   applySolverNode(root, origin, "", copy);
   params = copy;

@@ -61,10 +61,14 @@ std::string SolverParams::validate() const {
         << ")";
   if (err.tellp() == 0 && (min_iterations < 0 || max_iterations < minIterations() ||
                            max_iterations > 1000))
-    err << "iterations must satisfy 0 <= min_iterations <= max_iterations <= 1000 (got "
-        << min_iterations << ", " << max_iterations << "; min_iterations 0 means "
-        << minIterations() << " for the " << (gauss_seidel ? "Gauss-Seidel" : "Jacobi")
-        << " solve: set it too for fewer)";
+  {
+    err << "iterations must satisfy 0 <= min_iterations <= max_iterations <= 1000 (got min_iterations "
+        << min_iterations << ", max_iterations " << max_iterations;
+    if (min_iterations == 0)
+      err << "; min_iterations 0 means " << minIterations() << " for the "
+          << (gauss_seidel ? "Gauss-Seidel" : "Jacobi") << " solve: set it too for fewer";
+    err << ")";
+  }
   if (err.tellp() == 0) nonNegative("density_tolerance", density_tolerance);
   if (err.tellp() == 0) nonNegative("cfm_relaxation", cfm_relaxation);
   if (err.tellp() == 0 && !(finite(chebyshev_rho) && chebyshev_rho >= 0.0f && chebyshev_rho <= 0.99f))

@@ -68,15 +68,17 @@ visualization_msgs::InteractiveMarker dragMarker(const pbf::Obstacle& o, std::si
 
 Eigen::Isometry3f stepToward(const Eigen::Isometry3f& current, const Eigen::Isometry3f& target,
                              float max_move, float radius) {
-  const Eigen::Vector3f shift = target.translation() - current.translation();
+  // In double: a target far out (any finite float) has a distance whose square overflows
+  // a float, which made the step's fraction 0 and left the obstacle where it was.
+  const Eigen::Vector3d shift = (target.translation() - current.translation()).cast<double>();
   const Eigen::Quaternionf from(current.linear()), to(target.linear());
-  const float angle = from.angularDistance(to);
-  const float move = shift.norm() + angle * radius;  // bound on any point's travel
+  const double angle = from.angularDistance(to);
+  const double move = shift.norm() + angle * radius;  // bound on any point's travel
   if (!(move > max_move)) return target;
-  const float f = max_move / move;
+  const double f = max_move / move;
   Eigen::Isometry3f step = Eigen::Isometry3f::Identity();
-  step.linear() = from.slerp(f, to).normalized().toRotationMatrix();
-  step.translation() = current.translation() + f * shift;
+  step.linear() = from.slerp(static_cast<float>(f), to).normalized().toRotationMatrix();
+  step.translation() = current.translation() + (f * shift).cast<float>();
   return step;
 }
 

@@ -116,6 +116,15 @@ TEST(Scene, FewerIterationsThanTheSolvesFloorNameIt) {
         << e.what();
   }
   EXPECT_TRUE(p.gauss_seidel) << "a refused setting must leave the parameters as they were";
+  // min_iterations given: the message says what it is, not what 0 would mean.
+  try {
+    pbf::applySolverYaml("{min_iterations: 100, max_iterations: 1}", "params", p);
+    FAIL() << "min_iterations above max_iterations was accepted";
+  } catch (const pbf::SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("got min_iterations 100, max_iterations 1)"), std::string::npos) << m;
+    EXPECT_EQ(m.find("means"), std::string::npos) << m;
+  }
   pbf::applySolverYaml("{gauss_seidel: false, min_iterations: 1, max_iterations: 1}", "params", p);
   EXPECT_EQ(p.max_iterations, 1);
   EXPECT_EQ(p.minIterations(), 1);

@@ -36,6 +36,44 @@ TEST(SceneLimits, NonStringNamesAndKeysAreNamedRefusals) {
   EXPECT_NE(solver_key.find("under 'solver.'"), std::string::npos) << solver_key;
 }
 
+// YAML forbids a key twice in one map; yaml-cpp lets it through, a lookup then took the first
+// value and a loop over the map the last (a spacing of 0.04 then 0.001 built 864 000
+// particles). Refused by name, at any depth, in scenes and in --set / parameter text.
+TEST(SceneLimits, AKeyGivenTwiceIsRefusedByName) {
+  const std::string top = errorOf(kBox + kFluid + "fluid: []\n");
+  EXPECT_NE(top.find("bad.yaml: key 'fluid' is given twice"), std::string::npos) << top;
+  const std::string nested =
+      errorOf(kBox + kFluid + "solver: {particle_spacing: 0.04, particle_spacing: 0.001}\n");
+  EXPECT_NE(nested.find("key 'solver.particle_spacing' is given twice"), std::string::npos) << nested;
+  const std::string in_list = errorOf(kBox + "fluid: [{box: {min: [0,0,0], min: [0,0,0], max: [1,1,1]}}]\n");
+  EXPECT_NE(in_list.find("key 'fluid[0].box.min' is given twice"), std::string::npos) << in_list;
+  pbf::SolverParams p;
+  try {
+    pbf::applySolverYaml("{xsph_viscosity: 0.001, xsph_viscosity: 0.002}", "params", p);
+    FAIL() << "a solver key given twice was accepted";
+  } catch (const pbf::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'xsph_viscosity' is given twice"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(errorOf(kBox + kFluid + "solver: {particle_spacing: 0.04}\n"), "");  // once is fine
+  // The check walks every node: aliases that name one node 10^9 times end it by count.
+  std::string laughs = kBox + kFluid + "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int k = 1; k < 10; ++k) {
+    std::string refs;
+    for (int r = 0; r < 10; ++r) refs += std::string(r ? ", " : "") + "*a" + std::to_string(k - 1);
+    laughs += "a" + std::to_string(k) + ": &a" + std::to_string(k) + " [" + refs + "]\n";
+  }
+  const std::string bomb = errorOf(laughs);
+  EXPECT_NE(bomb.find("more than 10^6 YAML nodes"), std::string::npos) << bomb;
+}
+
+// A block's velocity is bounded as ~emit's and the emitters' are: 3e38 m/s loaded, and the
+// first step's kinetic energy was infinite (every particle left out of the cloud).
+TEST(SceneLimits, FluidBlockFasterThanANozzleIsRefused) {
+  const std::string err = errorOf(kBox + "fluid: [{box: {min: [0,0,0], max: [0.5,0.5,0.5]}, velocity: [3e38, 3e38, 0]}]\n");
+  EXPECT_NE(err.find("key 'fluid[0].velocity': expected a speed of at most 1000 m/s"), std::string::npos) << err;
+  EXPECT_EQ(errorOf(kBox + "fluid: [{box: {min: [0,0,0], max: [0.5,0.5,0.5]}, velocity: [0, 0, -999]}]\n"), "");
+}
+
 TEST(SceneLimits, FloatOverflowIsRefusedNotTurnedIntoInf) {
   const std::string err =
       errorOf(kBox + kFluid + "domain_pose: {translation: [1e39, 0, 0]}\n");

@@ -58,6 +58,14 @@ TEST(ObstacleMover, StepsTowardTheTargetByAtMostTheAllowedTravel) {
   // Already close enough: the whole way at once.
   const Eigen::Isometry3f near = Eigen::Translation3f(0.001f, 0.0f, 0.0f) * Eigen::Isometry3f::Identity();
   EXPECT_TRUE(pbf_ros::stepToward(start, near, max_move, radius).isApprox(near));
+  // A target as far as a float goes: the obstacle still sets off, by the allowed travel
+  // (the distance's square overflowed a float and it stayed put, without a word).
+  for (const float far : {1e30f, 3.4e38f}) {
+    const Eigen::Isometry3f distant = Eigen::Translation3f(far, 0.0f, 0.0f) * Eigen::Isometry3f::Identity();
+    const Eigen::Isometry3f next = pbf_ros::stepToward(start, distant, max_move, radius);
+    EXPECT_NEAR(next.translation().x(), max_move, 1e-6f) << far;
+    EXPECT_TRUE(next.translation().allFinite()) << far;
+  }
 }
 
 }  // namespace
