@@ -121,8 +121,10 @@ const std::vector<std::uint32_t>& NeighborGrid::build(const std::vector<Eigen::V
   return order_;
 }
 
-void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float radius) {
+void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float radius,
+                                 std::size_t max_pairs) {
   const std::size_t n = pts.size();
+  max_pairs = std::min(max_pairs, kMaxPairs);
   if (n != order_.size()) throw std::invalid_argument("NeighborGrid: points differ from build");
   if (radius > cell_size_ * 1.0001f)
     throw std::invalid_argument("NeighborGrid: radius larger than the cell size");
@@ -238,18 +240,23 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
       const Candidates candidates{px, py, pz, ci, m};
       for (; i < cell_end; ++i) {
         offsets_[i] = static_cast<std::uint32_t>(used);  // block-local until the merge
+        // Checked before the buffer grows: in a collapsed fluid one cell holds thousands of
+        // points, and its lists alone would take gigabytes before the cell ends.
+        if (used + padded > max_pairs) {
+          too_many = true;
+          break;
+        }
         if (buf.size() < used + padded) buf.resize(std::max(2 * buf.size(), used + padded));
         used += keepCandidatesWithin(candidates, pts[i].x(), pts[i].y(), pts[i].z(), r2,
                                      static_cast<std::uint32_t>(i), buf.data() + used);
       }
-      if (used > kMaxPairs) too_many = true;
     }
     thread_filled_[t] = used;
 #pragma omp barrier
 #pragma omp single
     {
       for (int b = 0; b < nt; ++b) block_base[b + 1] = block_base[b] + thread_filled_[b];
-      if (block_base[nt] > kMaxPairs) too_many = true;
+      if (block_base[nt] > max_pairs) too_many = true;
       if (!too_many) {
         indices_.resize(block_base[nt]);
         offsets_[n] = static_cast<std::uint32_t>(block_base[nt]);
@@ -264,9 +271,9 @@ void NeighborGrid::findNeighbors(const std::vector<Eigen::Vector3f>& pts, float 
   if (too_many) {
     offsets_.assign(n + 1, 0);  // no lists rather than wrong ones
     indices_.clear();
-    throw std::length_error("NeighborGrid: more than " + std::to_string(kMaxPairs) +
-                            " neighbour pairs (" + std::to_string(n) +
-                            " points packed far denser than a fluid)");
+    throw std::length_error("more than " + std::to_string(max_pairs) + " neighbour pairs for " +
+                            std::to_string(n) + " particles (" + std::to_string(max_pairs / std::max<std::size_t>(n, 1)) +
+                            " each): they are packed far denser than a fluid");
   }
 }
 

@@ -181,6 +181,7 @@ StepStats PbfSolver::stepWith(float dt) {
     surface_lend_ = saved_surface_lend_;
     lists_valid_ = false;
     ++stats.nan_retries;
+    if (attempt_too_dense_) ++stats.dense_retries;
     dt *= 0.5f;
   }
   wrenches_ = SolidWrenches();
@@ -223,6 +224,7 @@ std::vector<StepStats> PbfSolver::advance(double duration) {
 }
 
 bool PbfSolver::attemptStep(float dt, StepStats& stats) {
+  attempt_too_dense_ = false;
   stats.dt = dt;
   current_dt_ = dt;
   surface_lend_set_ = false;  // the solve's first pass updates this step's lend

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "pbf_ros/core/ChebyshevAcceleration.h"
 #include "pbf_ros/core/NeighborGrid.h"
@@ -81,10 +82,31 @@ void PbfSolver::rebuildNeighborLists(const std::vector<Eigen::Vector3f>& points)
     domain = domain.intersection(walls);
   }
   reorder(grid_->build(points, radius, domain, gravityAnchor(params_.gravity)));
-  grid_->findNeighbors(points, radius);  // `points` is one of the arrays reorder() permuted
+  try {
+    grid_->findNeighbors(points, radius, neighborPairBound());  // `points` was permuted by reorder()
+  } catch (const std::length_error&) {
+    attempt_too_dense_ = true;  // the step is rejected (PbfSolver::stepWith says why)
+    throw;
+  }
   if (params_.neighbor_skin > 0.0f) build_position_ = points;
   lists_valid_ = true;
   colours_valid_ = false;  // the Gauss-Seidel order follows the new cells
+}
+
+std::size_t PbfSolver::neighborPairBound() const {
+  // A particle at rest density has (4/3) pi (f (1 + skin))^3 lattice neighbours within the
+  // search radius (33 at the default f = 2). Eight times that on average means the fluid is
+  // eight times denser than water, which the density constraint never allows: a collapse
+  // (a step far too long for the forces), not a flow. Bounding the lists there keeps such a
+  // state's search to megabytes and milliseconds instead of gigabytes and seconds; the
+  // floor keeps small hostile starts (the stress matrix's 1000 particles at one point)
+  // solvable.
+  constexpr double kDenserThanAnyFluid = 8.0;
+  constexpr double kFloor = double(std::size_t(1) << 22);
+  const double reach = params_.support_radius_factor * (1.0 + params_.neighbor_skin);
+  const double at_rest = 4.0 / 3.0 * 3.14159265358979 * reach * reach * reach;
+  const double bound = std::max(kFloor, kDenserThanAnyFluid * at_rest * double(size()));
+  return static_cast<std::size_t>(std::min(bound, double(NeighborGrid::kMaxPairs)));
 }
 
 // The solver's corrections move particles too, so the skin is checked after each of them,

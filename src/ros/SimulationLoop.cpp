@@ -122,7 +122,20 @@ void FluidNode::stepOnce() {
     ROS_WARN_THROTTLE(10.0, "pbf_node: cannot keep up with real-time factor %g: achieving %.3g",
                       pacer_.factor(), pacer_.achievedFactor());
   }
-  if (last_stats_.failed) {
+  if (last_stats_.failed && last_stats_.dense_retries > 0) {
+    ROS_ERROR_THROTTLE(5.0, "pbf_node: step %llu given up after %d retries with half the time step, "
+                       "%d of them because the particles are packed far denser than a fluid (more "
+                       "than %zu neighbour pairs): the fluid has collapsed, most likely a time step "
+                       "too long for the forces (time_step, gravity); state kept, ~reset starts again",
+                       static_cast<unsigned long long>(solver_->stepCount()), last_stats_.nan_retries,
+                       last_stats_.dense_retries, solver_->neighborPairBound());
+  } else if (last_stats_.dense_retries > 0 && !last_stats_.failed) {
+    ROS_WARN_THROTTLE(10.0, "pbf_node: step %llu retried with a shorter time step %d times because the "
+                      "particles were packed far denser than a fluid (more than %zu neighbour pairs): "
+                      "the time step is too long for the forces (time_step, gravity)",
+                      static_cast<unsigned long long>(solver_->stepCount()), last_stats_.dense_retries,
+                      solver_->neighborPairBound());
+  } else if (last_stats_.failed) {
     ROS_ERROR_THROTTLE(5.0, "pbf_node: step %llu given up after %d NaN retries; state kept",
                        static_cast<unsigned long long>(solver_->stepCount()),
                        last_stats_.nan_retries);

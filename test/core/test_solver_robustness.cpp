@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
 
 #include "SolverTestUtil.h"
@@ -10,6 +12,13 @@
 namespace {
 
 using Points = std::vector<Eigen::Vector3f>;
+
+// The process's largest resident set so far [kB].
+long peakResidentKb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;
+}
 
 // Kinetic energy bound for hostile runs: every particle at the solver's speed cap
 // (max_speed_factor * sqrt(2 |g| L)); anything above means energy came from nowhere.
@@ -43,6 +52,37 @@ TEST(SolverRobustness, AllParticlesAtOnePointSpreadWithoutNaN) {
   Eigen::AlignedBox3f bounds;
   for (const auto& p : solver->positions()) bounds.extend(p);
   EXPECT_GT(bounds.sizes().minCoeff(), 2.0f * scene.solver.particle_spacing);
+}
+
+// A collapsed fluid (here 20 000 particles in one 2 cm cube, as in-range settings reached
+// through dynamic_reconfigure once did: gravity (100, -100, 100) m/s^2 at a fixed 0.05 s
+// pressed the dam break into one corner) has ~N^2 neighbour pairs. The search stops at
+// neighborPairBound(), the pairs the particles would have at 8 times water's density, so the
+// step is rejected as too dense, within megabytes, and the state stays as it was. Before,
+// the bound was 2^28 pairs for any N: lists and buffers grew to 3.9 GB and a step took 25 s.
+TEST(SolverRobustness, ACollapsedFluidIsRejectedWithinBoundedMemory) {
+  pbf::Scene scene = pbf_test::loadScene("dam_break");
+  scene.solver.max_nan_retries = 2;
+  auto solver = pbf_test::makeSolver(scene);
+  const std::size_t n = solver->size();
+  ASSERT_GT(n, 15000u);
+  // 8 x (4/3) pi 2^3 = 268 pairs per particle at the default support, no skin.
+  EXPECT_NEAR(double(solver->neighborPairBound()) / double(n), 268.1, 0.5);
+  Points packed(n);
+  for (std::size_t i = 0; i < n; ++i)  // a 2 cm cube, 28 per axis: 0.7 mm apart
+    packed[i] = Eigen::Vector3f(0.1f, 0.1f, 0.1f) + 7e-4f * Eigen::Vector3f(float(i % 28), float(i / 28 % 28), float(i / 784));
+  solver->setParticles(packed);
+  const long peak_before_kb = peakResidentKb();
+  const pbf::StepStats st = solver->step();
+  // The lists stop at 268 x 20 000 pairs (21 MB), each thread's buffer at twice that.
+  EXPECT_LT(peakResidentKb() - peak_before_kb, 256 * 1024) << "kB more at the peak";
+  EXPECT_TRUE(st.failed);
+  EXPECT_EQ(st.nan_retries, 3);
+  EXPECT_EQ(st.dense_retries, 3);
+  EXPECT_EQ(solver->positions().size(), n);
+  EXPECT_TRUE(pbf::allFinite(solver->positions()));
+  // The same blob of 800 (the test above) is under the floor of 2^22 pairs and is solved.
+  EXPECT_GE(solver->neighborPairBound(), std::size_t(1) << 22);
 }
 
 TEST(SolverRobustness, LargeTimeStepWithOneIterationStaysFiniteAndInside) {

@@ -39,10 +39,12 @@ class NeighborGrid {
   // CSR lists for the points of the last build, given in sorted order: neighbours of i
   // are indices()[offsets()[i] .. offsets()[i+1]), excluding i, every j with
   // |p_i - p_j| < radius, in ascending j. Requires radius <= cell_size.
-  // Throws std::length_error (leaving empty lists) beyond kMaxPairs entries, which bounds
-  // the memory (1 GiB) and keeps the 32-bit offsets from overflowing: a fluid has ~30-60
-  // neighbours per point, only a hostile state (thousands of points in one spot) gets there.
-  void findNeighbors(const std::vector<Eigen::Vector3f>& sorted_points, float radius);
+  // Throws std::length_error (leaving empty lists) beyond max_pairs entries (at most
+  // kMaxPairs), which bounds the memory (the lists and the threads' buffers, each at most
+  // twice the lists) and keeps the 32-bit offsets from overflowing: a fluid has ~30-60
+  // neighbours per point, only a collapsed state (thousands of points in one spot) gets there.
+  void findNeighbors(const std::vector<Eigen::Vector3f>& sorted_points, float radius,
+                     std::size_t max_pairs = kMaxPairs);
 
   const std::vector<std::uint32_t>& offsets() const { return offsets_; }
   const std::vector<std::uint32_t>& indices() const { return indices_; }

@@ -113,6 +113,10 @@ class PbfSolver {
   bool wrenchTracking() const { return track_wrenches_; }
   // Of the last step (valid == false when tracking was off or the step failed).
   const SolidWrenches& wrenches() const { return wrenches_; }
+  // The most neighbour pairs a search may find: what the particles would have at 8 times
+  // water's density, never below 2^22 (16 MiB) nor above NeighborGrid::kMaxPairs. A step
+  // whose search finds more is rejected (StepStats::dense_retries).
+  std::size_t neighborPairBound() const;
 
  private:
   bool attemptStep(float dt, StepStats& stats);
@@ -262,6 +266,7 @@ class PbfSolver {
   WrenchAccumulator wrench_sums_;  // of the attempt in progress
   SolidWrenches wrenches_;         // of the last step
   bool lists_valid_ = false;
+  bool attempt_too_dense_ = false;  // the last attempt's neighbour search hit neighborPairBound()
   float current_dt_ = 0.0f;  // dt of the attempt in progress (s_corr scales with it)
   double time_ = 0.0;
   std::uint64_t step_count_ = 0;

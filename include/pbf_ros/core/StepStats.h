@@ -61,6 +61,8 @@ struct StepStats {
   double max_speed = 0.0;                // [m/s]
   double kinetic_energy = 0.0;           // [J]
   int nan_retries = 0;                   // rejected attempts (non-finite values) this step
+  int dense_retries = 0;                 // ... of them: particles packed far denser than a
+                                         // fluid (more neighbour pairs than PbfSolver allows)
   bool failed = false;                   // no attempt succeeded: state left unchanged
   double initial_density_error = 0.0;    // mean compression of the prediction, before the solve
   bool neighbor_lists_reused = false;
