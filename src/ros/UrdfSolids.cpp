@@ -30,19 +30,22 @@ class MeshGrids {
  public:
   explicit MeshGrids(const pbf::SignedDistanceGridOptions& options) : options_(options) {}
 
-  std::shared_ptr<const pbf::SignedDistanceGrid> get(const urdf::Mesh& m, std::string& error) {
+  // `flaw`: what is wrong with a mesh that still takes part ("" when nothing is).
+  std::shared_ptr<const pbf::SignedDistanceGrid> get(const urdf::Mesh& m, std::string& error,
+                                                     std::string& flaw) {
     std::ostringstream key;
     key << m.filename << " " << m.scale.x << " " << m.scale.y << " " << m.scale.z;
     auto found = cache_.find(key.str());
     if (found == cache_.end()) found = cache_.emplace(key.str(), build(m)).first;
     error = found->second.error;
+    flaw = found->second.flaw;
     return found->second.grid;
   }
 
  private:
   struct Entry {
     std::shared_ptr<const pbf::SignedDistanceGrid> grid;
-    std::string error;
+    std::string error, flaw;
   };
 
   Entry build(const urdf::Mesh& m) const {
@@ -50,6 +53,18 @@ class MeshGrids {
     pbf::TriangleMesh mesh;
     if (!loadMeshResource(m.filename, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z), mesh, e.error))
       return e;
+    if (mesh.triangles.size() > kMaxMeshTriangles) {
+      e.error = std::to_string(mesh.triangles.size()) + " triangles, more than the " +
+                std::to_string(kMaxMeshTriangles) + " a collision mesh may have (a visual mesh? give a " +
+                "simplified one as collision geometry)";
+      return e;
+    }
+    // Inside and outside of a mesh that is not closed are guesses near its holes: a solid
+    // that stirs water at rest. It still takes part (robot meshes often have small gaps),
+    // but the user is told.
+    if (const std::size_t open = mesh.openEdges(); open > 0)
+      e.flaw = "the mesh is not closed (" + std::to_string(open) + " open edges): near its holes " +
+               "the solid's inside is a guess, and it may push water that should rest";
     try {
       e.grid = pbf::SignedDistanceGrid::build(mesh, options_);
     } catch (const std::invalid_argument& ex) {
@@ -64,7 +79,7 @@ class MeshGrids {
 
 // The obstacle for one <collision>'s geometry; false, with `error`, when it is unusable.
 bool toObstacle(const urdf::Geometry& g, MeshGrids& meshes, pbf::Obstacle& o, std::string& geometry,
-                std::string& error) {
+                std::string& error, std::string& flaw) {
   switch (g.type) {
     case urdf::Geometry::BOX: {
       const auto& b = static_cast<const urdf::Box&>(g);
@@ -90,7 +105,7 @@ bool toObstacle(const urdf::Geometry& g, MeshGrids& meshes, pbf::Obstacle& o, st
       const auto& m = static_cast<const urdf::Mesh&>(g);
       geometry = "mesh '" + m.filename + "'";
       o.shape = pbf::Obstacle::Shape::Mesh;
-      o.sdf = meshes.get(m, error);
+      o.sdf = meshes.get(m, error, flaw);
       if (!o.sdf) return false;
       break;
     }
@@ -166,12 +181,18 @@ UrdfSolids urdfSolids(const std::string& urdf_xml, const UrdfSolidsOptions& opti
                              (log.text().empty() ? std::string() : ": " + log.text()));
       return out;
     }
+    // The parser leaves out what it cannot read (a NaN box size, an infinite radius) and
+    // only says so in its log: that is the one place the link is named.
+    if (!log.text().empty())
+      out.problems.push_back("the URDF parser left out what it could not read: " + log.text());
   }
   out.robot_name = model.getName();
   if (const std::string err = options.sdf.validate(); !err.empty()) {
     out.problems.push_back("mesh grid options: " + err + " (mesh links left out)");
   }
   MeshGrids meshes(options.sdf);
+  std::size_t left_over = 0;  // solids beyond options.max_solids
+  std::string first_left_over;
   for (const urdf::LinkConstSharedPtr& link : selectLinks(model, options, out.problems)) {
     std::vector<urdf::CollisionSharedPtr> collisions = link->collision_array;
     if (collisions.empty() && link->collision) collisions.push_back(link->collision);
@@ -180,23 +201,35 @@ UrdfSolids urdfSolids(const std::string& urdf_xml, const UrdfSolidsOptions& opti
       UrdfSolid solid;
       solid.link = link->name;
       solid.name = link->name + "/" + (c.name.empty() ? "collision_" + std::to_string(i) : c.name);
-      std::string error;
+      std::string error, flaw;
       if (!c.geometry) {
         out.problems.push_back("link '" + link->name + "' collision " + std::to_string(i) +
                                " has no geometry: left out");
         continue;
       }
-      if (!toObstacle(*c.geometry, meshes, solid.obstacle, solid.geometry, error)) {
+      if (out.solids.size() == options.max_solids) {  // not even built: counted and left out
+        ++left_over;
+        if (left_over == 1) first_left_over = "link '" + link->name + "' collision " + std::to_string(i);
+        continue;
+      }
+      if (!toObstacle(*c.geometry, meshes, solid.obstacle, solid.geometry, error, flaw)) {
         out.problems.push_back("link '" + link->name + "' collision " + std::to_string(i) + " (" +
                                solid.geometry + "): " + error + "; left out");
         continue;
       }
+      if (!flaw.empty())
+        out.problems.push_back("link '" + link->name + "' collision " + std::to_string(i) + " (" +
+                               solid.geometry + "): " + flaw + "; it takes part");
       solid.obstacle.frame = link->name;
       solid.obstacle.offset = isometry(c.origin);
       solid.obstacle.pose = solid.obstacle.offset;  // until tf says where the link is
       out.solids.push_back(std::move(solid));
     }
   }
+  if (left_over > 0)
+    out.problems.push_back("robot '" + out.robot_name + "': at most " + std::to_string(options.max_solids) +
+                           " solids take part (as many as a scene's obstacles); the " + std::to_string(left_over) +
+                           " collision elements after them, from " + first_left_over + " on, are left out");
   return out;
 }
 

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -215,6 +217,90 @@ TEST(UrdfSolids, AMissingOrDegenerateMeshIsReportedAndTheRestStays) {
   EXPECT_NE(s.problems[3].find("link 'zero' collision 0 (sphere): radius must be finite and > 0"),
             std::string::npos) << s.problems[3];
   for (const auto& p : s.problems) EXPECT_NE(p.find("left out"), std::string::npos) << p;
+}
+
+// A binary STL of `triangles` (each as three corners) at `path`.
+void writeStl(const std::string& path, const std::vector<std::array<Eigen::Vector3f, 3>>& triangles) {
+  std::ofstream out(path, std::ios::binary);
+  const char header[80] = {};
+  out.write(header, 80);
+  const std::uint32_t count = static_cast<std::uint32_t>(triangles.size());
+  out.write(reinterpret_cast<const char*>(&count), 4);
+  for (const auto& t : triangles) {
+    const float normal[3] = {0, 0, 0};
+    out.write(reinterpret_cast<const char*>(normal), 12);
+    for (const Eigen::Vector3f& v : t) out.write(reinterpret_cast<const char*>(v.data()), 12);
+    const std::uint16_t attributes = 0;
+    out.write(reinterpret_cast<const char*>(&attributes), 2);
+  }
+}
+
+// The 12 triangles of a cube of half-size h, facing out.
+std::vector<std::array<Eigen::Vector3f, 3>> cube(float h) {
+  const Eigen::Vector3f v[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h},
+                                {-h, -h, h},  {h, -h, h},  {h, h, h},  {-h, h, h}};
+  const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                        {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  std::vector<std::array<Eigen::Vector3f, 3>> out;
+  for (const auto& t : f) out.push_back({v[t[0]], v[t[1]], v[t[2]]});
+  return out;
+}
+
+// Found by a probe of the running node (session 36): a NaN or infinite size made the URDF
+// parser drop the element and say so only in its own log; a link with thousands of
+// collision elements took part beyond a scene's obstacle limit; a visual-sized mesh held up
+// every ~reset for 19 s while it was gridded; a mesh with a hole stirred a resting tank.
+TEST(UrdfSolids, WhatTheParserDropsIsNamedAndMeshesAndCountsAreBounded) {
+  // What the parser drops: named through its own message.
+  pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(
+      robot(link("base", collision("<box size=\"0.1 0.1 0.1\"/>")) +
+            link("box_nan", collision("<box size=\"nan 0.1 0.1\"/>")) +
+            "<joint name=\"j\" type=\"fixed\"><parent link=\"base\"/><child link=\"box_nan\"/></joint>"),
+      options());
+  EXPECT_EQ(s.solids.size(), 1u);
+  const std::string dropped = joined(s.problems);
+  EXPECT_NE(dropped.find("the URDF parser left out what it could not read"), std::string::npos) << dropped;
+  EXPECT_NE(dropped.find("box_nan"), std::string::npos) << dropped;
+
+  // More collision elements than a scene may have obstacles: the first 256 take part.
+  std::string spheres;
+  for (int i = 0; i < 300; ++i) spheres += collision("<sphere radius=\"0.01\"/>");
+  s = pbf_ros::urdfSolids(robot(link("many", spheres)), options());
+  EXPECT_EQ(s.solids.size(), pbf::kMaxObstacles);
+  ASSERT_EQ(s.problems.size(), 1u) << joined(s.problems);
+  EXPECT_NE(s.problems[0].find("at most 256 solids take part"), std::string::npos) << s.problems[0];
+  EXPECT_NE(s.problems[0].find("the 44 collision elements after them, from link 'many' collision 256 on"),
+            std::string::npos) << s.problems[0];
+
+  // A mesh with a hole takes part, named; one with more triangles than a collision mesh
+  // needs is refused before it is gridded.
+  const std::string dir = testing::TempDir();
+  std::vector<std::array<Eigen::Vector3f, 3>> open_box = cube(0.05f);
+  open_box.resize(10);  // the top face's two triangles missing
+  writeStl(dir + "/open_box.stl", open_box);
+  std::vector<std::array<Eigen::Vector3f, 3>> fine;
+  while (fine.size() <= pbf_ros::kMaxMeshTriangles) {  // cubes side by side: 12 triangles each
+    const Eigen::Vector3f at(0.01f * float(fine.size() / 12 % 100), 0.01f * float(fine.size() / 1200), 0.0f);
+    for (auto t : cube(0.004f)) {
+      for (auto& v : t) v += at;
+      fine.push_back(t);
+    }
+  }
+  writeStl(dir + "/fine.stl", fine);
+  s = pbf_ros::urdfSolids(
+      robot(link("holed", collision(meshGeometry("file://" + dir + "/open_box.stl"))) +
+            link("visual", collision(meshGeometry("file://" + dir + "/fine.stl"))) +
+            "<joint name=\"j\" type=\"fixed\"><parent link=\"holed\"/><child link=\"visual\"/></joint>"),
+      options());
+  ASSERT_EQ(s.solids.size(), 1u) << joined(s.problems);
+  EXPECT_EQ(s.solids[0].link, "holed");
+  ASSERT_EQ(s.problems.size(), 2u) << joined(s.problems);
+  EXPECT_NE(s.problems[0].find("link 'holed' collision 0"), std::string::npos) << s.problems[0];
+  EXPECT_NE(s.problems[0].find("not closed (4 open edges)"), std::string::npos) << s.problems[0];
+  EXPECT_NE(s.problems[0].find("it takes part"), std::string::npos) << s.problems[0];
+  EXPECT_NE(s.problems[1].find("link 'visual' collision 0"), std::string::npos) << s.problems[1];
+  EXPECT_NE(s.problems[1].find("more than the 50000 a collision mesh may have"), std::string::npos)
+      << s.problems[1];
 }
 
 std::string readFile(const std::string& path) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "pbf_ros/core/Scene.h"
+
 #include "pbf_ros/core/Obstacle.h"
 #include "pbf_ros/core/SignedDistanceGrid.h"
 
@@ -22,7 +24,15 @@ struct UrdfSolidsOptions {
   // Resolution and margin of mesh grids; the node uses cell = particle spacing / 2 and
   // band = support radius + particle spacing.
   pbf::SignedDistanceGridOptions sdf;
+  // At most this many solids take part (a scene may hold as many obstacles); the rest are
+  // left out with one problem that says how many.
+  std::size_t max_solids = pbf::kMaxObstacles;
 };
+
+// A mesh with more triangles is refused: gridding costs ~20 us per triangle (2 s for
+// 100 000 at a 1 cm spacing), on every ~reset and scene switch, while the fluid waits. A
+// collision mesh needs far fewer; a visual mesh given as collision geometry has this many.
+constexpr std::size_t kMaxMeshTriangles = 50000;
 
 struct UrdfSolid {
   std::string link;       // = obstacle.frame
@@ -34,7 +44,8 @@ struct UrdfSolid {
 struct UrdfSolids {
   std::string robot_name;
   std::vector<UrdfSolid> solids;
-  // One line per problem, each naming the link (or the URDF) and what was wrong.
+  // One line per problem, each naming the link (or the URDF) and what was wrong; a solid
+  // that takes part with a flaw (a mesh that is not closed) is named here too.
   std::vector<std::string> problems;
 
   std::vector<pbf::Obstacle> obstacles() const;
