@@ -180,8 +180,8 @@ TEST(Calibration, CurvedObstacleDoesNotOverLend) {
 // where even 1/60 s needs one sweep, and missed what follows).
 //
 // The shipped sweeps meet it up to 1/90 s (one sweep each). At 1/60 s they do not: the
-// first sweep leaves the error just above the tolerance, the next sweeps remove the
-// column's long mode slowly, and every sweep also moves the floor's layers sideways in the
+// first sweep leaves twice the tolerance (0.63 %), the next sweeps remove the column's
+// long mode slowly, and every sweep also moves the floor's layers sideways in the
 // pattern of the sweep's order (8.8 g dt after 28 sweeps at d = 0.02 m, 10.5 at 0.0125;
 // with a fixed number of sweeps it grows as their square root: README "Calibration",
 // mass). The Jacobi solve keeps the lattice's symmetry and meets it at 1/60 s too.
