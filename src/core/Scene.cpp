@@ -689,6 +689,24 @@ std::string Scene::checkParticleCount(std::size_t max_particles) const {
         << max_particles << " particles (~max_particles)";
   } else if (count == 0) {
     why << "scene '" << name << "' has no fluid left: its obstacles cover every fluid block";
+    // Name what covers the first block's middle: with a robot in the scene it is often one
+    // of its links (an obstacle on the link's frame), not a scene obstacle.
+    if (!fluid.empty()) {
+      const FluidBlock& b = fluid[0];
+      const BlockLattice lattice = blockLattice(b, d);
+      const Eigen::Vector3f middle = b.shape == FluidBlock::Shape::Box ? Eigen::Vector3f(0.5f * (b.min + b.max)) : b.center;
+      const Eigen::Vector3f cell = ((middle - lattice.start) / d).array().round().max(0.0f).min(
+          (lattice.n.array() - 1).max(0).cast<float>());
+      const Eigen::Vector3f p = lattice.start + d * cell;
+      for (std::size_t k = 0; k < obstacles.size(); ++k) {
+        Eigen::Vector3f normal;
+        if (!(obstacles[k].signedDistance(p, normal) < 0.5f * d)) continue;
+        why << " (the middle of fluid[0] lies in obstacle " << k;
+        if (!obstacles[k].frame.empty()) why << ", on frame '" << obstacles[k].frame << "'";
+        why << ")";
+        break;
+      }
+    }
   }
   return why.str();
 }

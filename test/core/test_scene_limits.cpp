@@ -144,6 +144,19 @@ TEST(SceneLimits, ObstaclesThatRemoveEveryParticleAreReported) {
       "covered.yaml");
   EXPECT_NE(s.checkParticleCount(1000000).find("obstacles cover every fluid block"),
             std::string::npos);
+  // Which one: with a robot the culprit is a link (an obstacle on the link's frame), and a
+  // message naming only the scene left the user to guess (found by a probe, session 36).
+  pbf::Scene with_link = pbf::loadSceneString(
+      kBox + kFluid + "obstacles: [{box: {center: [0.9,0.9,0.9], half_extents: [0.05,0.05,0.05]}}]\n",
+      "robot.yaml");
+  pbf::Obstacle link_box;
+  link_box.shape = pbf::Obstacle::Shape::Box;
+  link_box.half_extents = Eigen::Vector3f::Constant(0.4f);
+  link_box.pose = Eigen::Isometry3f(Eigen::Translation3f(0.25f, 0.25f, 0.25f));
+  link_box.frame = "probe";
+  with_link.obstacles.push_back(link_box);
+  const std::string why = with_link.checkParticleCount(1000000);
+  EXPECT_NE(why.find("(the middle of fluid[0] lies in obstacle 1, on frame 'probe')"), std::string::npos) << why;
 }
 
 TEST(SceneLimits, BlocksFollowTheirFrameOrTheContainerFrame) {
