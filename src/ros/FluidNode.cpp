@@ -186,7 +186,10 @@ FluidConfig FluidNode::startupConfig(const pbf::Scene& scene) {
   if (pnh_.hasParam("scene")) recorded.insert("scene");
   record_.recordUserSettings(user_config_, recorded);
 
-  FluidConfig from_scene = user_config_;
+  // What a refused value falls back to: Fluid.cfg's default, or the scene's for a solver
+  // parameter. Not the user's configuration: a NaN there would be "kept" (a NaN stats_rate
+  // silenced ~stats, a NaN camera position went out on tf).
+  FluidConfig from_scene = FluidConfig::__getDefault__();
   solverParamsToConfig(scene.solver, from_scene);
   FluidConfig config = from_scene;
   overlayParams(user_config_, user_param_names_, config);

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Live hostile input (issue 11): every failed scene change is a named refusal after which
 the reconfigure server reports the scene that runs; a spacing asking for millions of
-particles is refused before anything is allocated; Fluid.cfg's range ends are usable."""
+particles is refused before anything is allocated; Fluid.cfg's range ends are usable;
+non-finite start-up values fall back to Fluid.cfg's defaults."""
+import math
 import os
 import tempfile
 import unittest
@@ -11,6 +13,7 @@ import dynamic_reconfigure.client
 import rosgraph
 import rospy
 import rostest
+import tf2_ros
 
 from fluid_test_util import NODE, stats_listener
 
@@ -78,6 +81,23 @@ class HostileInputTest(unittest.TestCase):
         self.assertAlmostEqual(config['particle_spacing'], 0.2)
         self.assertLess(peak_rss_mb(NODE) - before, 50.0)
         self.assert_still_running(count)
+
+    def test_non_finite_start_up_values_fall_back_to_the_defaults(self):
+        # hostile_input.test starts the node with camera_position_x NaN and render_vfov inf.
+        # Refused, they were "kept": the camera's tf went out with NaN in it.
+        config = self.client.get_configuration(timeout=10.0)
+        defaults = {d['name']: d['default']
+                    for d in self.client.get_parameter_descriptions(timeout=10.0)}
+        for name in ('camera_position_x', 'render_vfov'):
+            self.assertTrue(math.isfinite(config[name]), '%s = %r' % (name, config[name]))
+            self.assertEqual(config[name], defaults[name], name)
+        buffer = tf2_ros.Buffer()
+        tf2_ros.TransformListener(buffer)
+        t = buffer.lookup_transform('fluid_domain', 'fluid_camera_optical', rospy.Time(0),
+                                    rospy.Duration(10.0)).transform
+        values = [t.translation.x, t.translation.y, t.translation.z,
+                  t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w]
+        self.assertTrue(all(math.isfinite(v) for v in values), values)
 
     def test_the_advertised_minimum_of_scorr_delta_q_is_usable(self):
         minimum = self.client.get_parameter_descriptions(timeout=10.0)
