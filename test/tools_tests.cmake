@@ -43,3 +43,18 @@ catkin_add_gtest(test_scaling_study test/tools/test_scaling_study.cpp)
 if(TARGET test_scaling_study)
   target_link_libraries(test_scaling_study pbf_bench_support pbf_core gtest_main)
 endif()
+
+# pbf_run counts a scene before it allocates it and names a bad number (session 36: a
+# --spacing of 1e-5 grew by 3 GB a second; 0, NaN and negative spacings were ignored).
+add_test(NAME test_pbf_run_refuses_a_spacing_bomb
+         COMMAND ${CATKIN_DEVEL_PREFIX}/lib/pbf_ros/pbf_run hydrostatic_tank --spacing 1e-5)
+set_tests_properties(test_pbf_run_refuses_a_spacing_bomb PROPERTIES TIMEOUT 30
+                     PASS_REGULAR_EXPRESSION "lattice cells; expected at most 5e8")
+add_test(NAME test_pbf_run_refuses_a_spacing_over_max_particles
+         COMMAND ${CATKIN_DEVEL_PREFIX}/lib/pbf_ros/pbf_run hydrostatic_tank --spacing 0.003)
+set_tests_properties(test_pbf_run_refuses_a_spacing_over_max_particles PROPERTIES TIMEOUT 30
+                     PASS_REGULAR_EXPRESSION "needs more than 1000000 particles \\(--max-particles\\)")
+add_test(NAME test_pbf_run_names_a_bad_number
+         COMMAND ${CATKIN_DEVEL_PREFIX}/lib/pbf_ros/pbf_run hydrostatic_tank --spacing nan)
+set_tests_properties(test_pbf_run_names_a_bad_number PROPERTIES TIMEOUT 30
+                     PASS_REGULAR_EXPRESSION "--spacing expects a finite number > 0, got 'nan'")

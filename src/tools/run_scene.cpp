@@ -5,6 +5,7 @@
 // force on every solid each step (its cost shows in ms/step) and prints the last step's.
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -22,11 +23,27 @@
 #define PBF_SOURCE_DIR "."
 #endif
 
+namespace {
+
+// A finite number > 0 for `option`, or exit 2 naming it ("abc", "nan", "inf", "-1", "0").
+double positiveNumber(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v) || !(v > 0.0)) {
+    std::cerr << "pbf_run: " << option << " expects a finite number > 0, got '" << text << "'\n";
+    std::exit(2);
+  }
+  return v;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   std::string scene_name = "dam_break";
   std::string scenes_dir = std::string(PBF_SOURCE_DIR) + "/config/scenes";
   double seconds = 2.0;
-  float spacing = 0.0f;
+  float spacing = 0.0f;  // 0: the scene's
+  std::size_t max_particles = 1000000;  // as the node's ~max_particles
   std::string overrides;  // YAML map of solver parameters from --set key=value
   bool track_wrenches = false;
   for (int i = 1; i < argc; ++i) {
@@ -38,8 +55,9 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--seconds") seconds = std::atof(value().c_str());
-    else if (a == "--spacing") spacing = std::atof(value().c_str());
+    if (a == "--seconds") seconds = positiveNumber(a, value());
+    else if (a == "--spacing") spacing = static_cast<float>(positiveNumber(a, value()));
+    else if (a == "--max-particles") max_particles = static_cast<std::size_t>(positiveNumber(a, value()));
     else if (a == "--scenes-dir") scenes_dir = value();
     else if (a == "--track-wrenches") track_wrenches = true;
     else if (a == "--set") {
@@ -52,21 +70,28 @@ int main(int argc, char** argv) {
       overrides += kv.substr(0, eq) + ": " + kv.substr(eq + 1) + "\n";
     }
     else if (a == "-h" || a == "--help") {
-      std::cout << "usage: pbf_run [scene] [--seconds S] [--spacing D] [--scenes-dir DIR] [--set solver_key=value]... [--track-wrenches]\n";
+      std::cout << "usage: pbf_run [scene] [--seconds S] [--spacing D] [--max-particles N] [--scenes-dir DIR] [--set solver_key=value]... [--track-wrenches]\n";
       return 0;
     } else if (!a.empty() && a[0] == '-') {
       std::cerr << "pbf_run: unknown option " << a << "\n";
       return 2;
     } else scene_name = a;
   }
-  if (!(seconds > 0.0)) {
-    std::cerr << "pbf_run: --seconds must be > 0\n";
-    return 2;
-  }
+
   try {
     pbf::Scene scene = pbf::loadSceneFile(pbf::resolveScenePath(scene_name, scenes_dir));
     if (spacing > 0.0f) scene.solver.particle_spacing = spacing;
     if (!overrides.empty()) pbf::applySolverYaml(overrides, "--set", scene.solver);
+    // Counted before anything is allocated, as the node does: a fine spacing must not take
+    // the machine's memory first (--spacing 1e-5 grew by 3 GB a second).
+    std::string why = scene.validate();
+    if (why.empty()) why = scene.checkParticleCount(max_particles);
+    if (!why.empty()) {
+      const std::string node_option = "~max_particles";  // the scene names the node's; ours is:
+      if (const auto at = why.find(node_option); at != std::string::npos) why.replace(at, node_option.size(), "--max-particles");
+      std::cerr << "pbf_run: " << why << "\n";
+      return 2;
+    }
     pbf::PbfSolver solver;
     pbf::setUpSolver(scene, solver);
     pbf::FloatingBodies floating = pbf::makeFloatingBodies(scene);
