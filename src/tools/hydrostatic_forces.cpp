@@ -21,8 +21,21 @@
 #include "pbf_ros/core/SceneSetup.h"
 
 namespace {
+const char* const kArgNames[] = {"", "SHAPE", "SPACING", "TANK", "DEPTH", "SIZE", "HEIGHT",
+                                 "WARM", "SPAN", "HALF_HEIGHT"};
+
+// Argument i, a finite number > 0 (every one is a length or a time), or `fallback` when not
+// given; anything else ends the program naming it ("nan", "-0.04", "abc").
 double arg(int argc, char** argv, int i, double fallback) {
-  return argc > i ? std::atof(argv[i]) : fallback;
+  if (argc <= i) return fallback;
+  char* end = nullptr;
+  const double v = std::strtod(argv[i], &end);
+  if (*argv[i] == '\0' || *end != '\0' || !std::isfinite(v) || !(v > 0.0)) {
+    std::fprintf(stderr, "pbf_hydrostatic_forces: %s expects a finite number > 0, got '%s'\n",
+                 kArgNames[i], argv[i]);
+    std::exit(2);
+  }
+  return v;
 }
 }  // namespace
 
@@ -64,15 +77,34 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  const std::string count = scene.checkParticleCount(1000000);
+  if (!count.empty()) {
+    std::fprintf(stderr, "pbf_hydrostatic_forces: %s\n", count.c_str());
+    return 2;
+  }
+
   pbf::PbfSolver solver;
-  pbf::setUpSolver(scene, solver);
+  try {  // a solid the solver refuses (a radius of 0 once rounded) is named, not an abort
+    pbf::setUpSolver(scene, solver);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pbf_hydrostatic_forces: %s\n", e.what());
+    return 2;
+  }
   solver.advance(warm);
   solver.setWrenchTracking(true);
   double t = 0.0;
+  int failed_in_a_row = 0;
   Eigen::Vector3d on_solid = Eigen::Vector3d::Zero(), on_container = Eigen::Vector3d::Zero();
   while (t < span) {
     const pbf::StepStats stats = solver.step();
-    if (stats.failed) continue;
+    if (stats.failed) {
+      if (++failed_in_a_row == 10) {
+        std::fprintf(stderr, "pbf_hydrostatic_forces: 10 steps in a row failed; no figure\n");
+        return 1;
+      }
+      continue;
+    }
+    failed_in_a_row = 0;
     on_solid += stats.dt * solver.wrenches().obstacles[0].force;
     on_container += stats.dt * solver.wrenches().container.force;
     t += stats.dt;
