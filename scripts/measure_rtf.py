@@ -11,6 +11,7 @@ first at or after B), waiting at most `seconds` for B. A scene's cost changes as
 speed are compared over the same simulated interval, not the same wall-clock window.
 """
 import argparse
+import math
 import sys
 import time
 
@@ -24,7 +25,10 @@ def main():
     parser.add_argument("node", nargs="?", default="/fluid")
     parser.add_argument("--sim-window", type=float, nargs=2, metavar=("A", "B"))
     args = parser.parse_args(rospy.myargv()[1:])
-    if args.sim_window and not 0.0 <= args.sim_window[0] < args.sim_window[1]:
+    if not (math.isfinite(args.seconds) and args.seconds > 0.0):
+        parser.error("seconds must be a finite number > 0, got %r" % args.seconds)
+    if args.sim_window and not (all(math.isfinite(v) for v in args.sim_window)
+                                and 0.0 <= args.sim_window[0] < args.sim_window[1]):
         parser.error("--sim-window needs 0 <= A < B")
     rospy.init_node("measure_rtf", anonymous=True)
     samples = []

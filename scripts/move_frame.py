@@ -42,16 +42,44 @@ def main():
         raise SystemExit(2)
     parent = rospy.get_param("~parent", "fluid_domain")
     child = rospy.get_param("~child", "tank")
-    axis = rospy.get_param("~axis", [1.0, 0.0, 0.0] if mode == "slosh" else [0.0, 1.0, 0.0])
-    rate_hz = float(rospy.get_param("~rate", 60.0))
-    amplitude = float(rospy.get_param("~amplitude", 0.05))
-    period = float(rospy.get_param("~period", 1.2))
-    pivot = rospy.get_param("~pivot", [0.0, 0.0, 0.0])
-    angle = float(rospy.get_param("~angle", 2.0))
-    delay = float(rospy.get_param("~delay", 1.0))
-    duration = float(rospy.get_param("~duration", 3.0))
-    if period <= 0.0 or duration <= 0.0 or rate_hz <= 0.0 or len(axis) != 3 or len(pivot) != 3:
-        rospy.logfatal("move_frame: need period, duration, rate > 0 and 3-vectors axis, pivot")
+    def number(name, default):
+        """A finite number, or exit naming the parameter (NaN went out on /tf)."""
+        value = rospy.get_param("~" + name, default)
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            value = float("nan")
+        if not math.isfinite(value):
+            rospy.logfatal("move_frame: ~%s must be a finite number, got %r", name, rospy.get_param("~" + name))
+            raise SystemExit(2)
+        return value
+
+    def vector(name, default):
+        """Three finite numbers, or exit naming the parameter."""
+        value = rospy.get_param("~" + name, default)
+        try:
+            value = [float(v) for v in value]
+        except (TypeError, ValueError):
+            value = []
+        if len(value) != 3 or not all(math.isfinite(v) for v in value):
+            rospy.logfatal("move_frame: ~%s must be three finite numbers, got %r", name, rospy.get_param("~" + name))
+            raise SystemExit(2)
+        return value
+
+    axis = vector("axis", [1.0, 0.0, 0.0] if mode == "slosh" else [0.0, 1.0, 0.0])
+    rate_hz = number("rate", 60.0)
+    amplitude = number("amplitude", 0.05)
+    period = number("period", 1.2)
+    pivot = vector("pivot", [0.0, 0.0, 0.0])
+    angle = number("angle", 2.0)
+    delay = number("delay", 1.0)
+    duration = number("duration", 3.0)
+    # At most 1 kHz: a tf publisher faster than that only floods the graph.
+    if period <= 0.0 or duration <= 0.0 or not 0.0 < rate_hz <= 1000.0 or delay < 0.0:
+        rospy.logfatal("move_frame: need ~period, ~duration > 0, ~delay >= 0 and 0 < ~rate <= 1000 Hz")
+        raise SystemExit(2)
+    if math.sqrt(sum(a * a for a in axis)) < 1e-9:
+        rospy.logfatal("move_frame: ~axis must not be zero")
         raise SystemExit(2)
 
     broadcaster = tf2_ros.TransformBroadcaster()
