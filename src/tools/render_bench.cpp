@@ -42,6 +42,16 @@ struct Options {
   std::string png_dir;
 };
 
+// An integer in [lo, hi] for `option`, or an error naming it ("abc", "-5", "2000000000").
+int intIn(const std::string& option, const std::string& text, long lo, long hi) {
+  char* end = nullptr;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || v < lo || v > hi)
+    throw std::invalid_argument(option + " expects an integer in [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + "], got '" + text + "'");
+  return static_cast<int>(v);
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -51,24 +61,32 @@ Options parse(int argc, char** argv) {
       return argv[++i];
     };
     if (arg == "--backend") o.backend = value();
-    else if (arg == "--frames") o.frames = std::stoi(value());
-    else if (arg == "--warmup") o.warmup = std::stoi(value());
-    else if (arg == "--width") o.width = std::stoi(value());
-    else if (arg == "--height") o.height = std::stoi(value());
+    else if (arg == "--frames") o.frames = intIn(arg, value(), 1, 100000);
+    else if (arg == "--warmup") o.warmup = intIn(arg, value(), 0, 100000);
+    // The node's own limit (Fluid.cfg render_width, render_height).
+    else if (arg == "--width") o.width = intIn(arg, value(), 1, 4096);
+    else if (arg == "--height") o.height = intIn(arg, value(), 1, 4096);
     else if (arg == "--filter") o.filter = value();
-    else if (arg == "--sigma") o.sigma = std::stof(value());
+    else if (arg == "--sigma") {
+      const std::string text = value();
+      char* end = nullptr;
+      o.sigma = std::strtof(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !std::isfinite(o.sigma) || !(o.sigma > 0.0f))
+        throw std::invalid_argument("--sigma expects a finite number > 0, got '" + text + "'");
+    }
     else if (arg == "--shaders") o.shader_dir = value();
     else if (arg == "--png") o.png_dir = value();
     else if (arg == "--counts") {
       o.counts.clear();
       std::stringstream list(value());
-      for (std::string item; std::getline(list, item, ',');) o.counts.push_back(std::stoi(item));
+      // At most the node's ~max_particles default.
+      for (std::string item; std::getline(list, item, ',');) o.counts.push_back(intIn(arg, item, 1, 1000000));
+      if (o.counts.empty()) throw std::invalid_argument("--counts expects a list such as 20000,80000");
     } else {
       throw std::invalid_argument("unknown argument " + arg +
                                   " (see the comment at the top of render_bench.cpp)");
     }
   }
-  if (o.frames < 1) throw std::invalid_argument("--frames must be at least 1");
   return o;
 }
 
