@@ -167,6 +167,8 @@ void FluidNode::publishDue(double wall, bool force) {
   }
   wrench_pubs_->publishDue(wall, stamp());
   const double snapshot_rate = snapshots_.requestedRate();
+  // A faster rate takes effect within its own period, not after the slower one's.
+  if (snapshot_rate > 0.0) next_snapshot_wall_ = std::min(next_snapshot_wall_, wall + 1.0 / snapshot_rate);
   if (snapshot_rate > 0.0 && (force || wall >= next_snapshot_wall_)) {
     next_snapshot_wall_ = nextDue(next_snapshot_wall_, 1.0 / snapshot_rate, wall);
     snapshots_.write(*solver_, stamp().toSec(), solver_->time());

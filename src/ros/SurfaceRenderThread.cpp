@@ -207,20 +207,25 @@ void SurfaceRenderThread::run() {
     }
 
     auto now = SteadyClock::now();
-    if (now >= next_frame) {
+    // A new subscriber or new settings (a faster render_rate, another size) get a frame now,
+    // not when the old rate's period ends (at 0.1 Hz that was up to 10 s later).
+    const bool newcomer = connections != rendered_connections;
+    const bool new_settings = generation != rendered_generation;
+    if (now >= next_frame || newcomer || new_settings) {
       const auto snapshot = snapshots_.latest();
       if (snapshot && !snapshot->positions.empty()) {
         const FluidStateKey state = fluidStateKey(*snapshot);
-        const bool newcomer = connections != rendered_connections;
-        if (newcomer || !(state == rendered_state) || generation != rendered_generation) {
-          if (generation != rendered_generation) renderer->setOptions(settings.options);
+        if (newcomer || !(state == rendered_state) || new_settings) {
+          if (new_settings) renderer->setOptions(settings.options);
+          const bool early = now < next_frame;
           renderAndPublish(*renderer, *snapshot, settings, image_count > 0, depth_count > 0);
           rendered_state = state;
           rendered_generation = generation;
           rendered_connections = connections;
           // At most render_rate frames per second; a slow frame is not made up for.
-          next_frame += std::chrono::duration_cast<SteadyClock::duration>(
+          const auto period = std::chrono::duration_cast<SteadyClock::duration>(
               std::chrono::duration<double>(1.0 / std::max(settings.rate, 1e-3)));
+          next_frame = early ? now + period : next_frame + period;
           now = SteadyClock::now();
           if (next_frame < now) next_frame = now;
         }

@@ -228,6 +228,24 @@ class SurfaceTopicsTest(unittest.TestCase):
             surface.close()
             stats.close()
 
+    def test_04b_a_faster_render_rate_takes_effect_at_once(self):
+        # At render_rate 0.1 the next frame is 10 s away. Raising the rate must not wait for
+        # it (it did: the render thread and the snapshots both kept the old period).
+        client = dynamic_reconfigure.client.Client(NODE, timeout=20.0)
+        images = Latest(NODE + '/rgb/image_rect_color', Image)
+        try:
+            client.update_configuration({'render_rate': 0.1})
+            images.next(timeout=20.0)  # the frame of the new setting (or of this newcomer)
+            images.next(timeout=20.0)  # ... and whichever came with it: now 10 s to the next
+            start = time.time()
+            client.update_configuration({'render_rate': 10.0})
+            images.next(timeout=20.0)
+            images.next(timeout=20.0)  # a second one, at the new rate
+            self.assertLess(time.time() - start, 8.0)
+        finally:
+            client.update_configuration({'render_rate': 10.0})
+            images.sub.unregister()
+
     def test_05_paused_fluid_is_not_rendered_again_but_newcomers_get_a_frame(self):
         pause = rospy.ServiceProxy(NODE + '/pause', SetBool)
         pause.wait_for_service(timeout=10.0)
