@@ -8,9 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "pbf_ros/core/Scene.h"
-
 #include "pbf_ros/core/Obstacle.h"
+#include "pbf_ros/core/Scene.h"
 #include "pbf_ros/core/SignedDistanceGrid.h"
 
 namespace pbf_ros {
