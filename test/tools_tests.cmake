@@ -58,3 +58,19 @@ add_test(NAME test_pbf_run_names_a_bad_number
          COMMAND ${CATKIN_DEVEL_PREFIX}/lib/pbf_ros/pbf_run hydrostatic_tank --spacing nan)
 set_tests_properties(test_pbf_run_names_a_bad_number PROPERTIES TIMEOUT 30
                      PASS_REGULAR_EXPRESSION "--spacing expects a finite number > 0, got 'nan'")
+
+# The other tools name a bad argument too (session 36: an abort, NaN printed with exit 0, a
+# traceback, a 24 GB allocation).
+add_test(NAME test_hydrostatic_forces_names_a_bad_argument
+         COMMAND ${CATKIN_DEVEL_PREFIX}/lib/pbf_ros/pbf_hydrostatic_forces sphere 0.02 0.3 0.24 nan)
+set_tests_properties(test_hydrostatic_forces_names_a_bad_argument PROPERTIES TIMEOUT 30
+                     PASS_REGULAR_EXPRESSION "SIZE expects a finite number > 0, got 'nan'")
+add_test(NAME test_render_bench_bounds_its_counts
+         COMMAND ${CATKIN_DEVEL_PREFIX}/lib/pbf_ros/pbf_render_bench --counts 2000000000)
+set_tests_properties(test_render_bench_bounds_its_counts PROPERTIES TIMEOUT 30
+                     PASS_REGULAR_EXPRESSION "--counts expects an integer in \\[1, 1000000\\], got '2000000000'")
+add_test(NAME test_measure_rtf_names_a_bad_duration
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/scripts/measure_rtf.py nan)
+set_tests_properties(test_measure_rtf_names_a_bad_duration PROPERTIES TIMEOUT 30
+                     ENVIRONMENT "PYTHONPATH=${CATKIN_DEVEL_PREFIX}/lib/python3/dist-packages"
+                     PASS_REGULAR_EXPRESSION "seconds must be a finite number > 0, got nan")
