@@ -667,7 +667,7 @@ void Scene::initialParticles(std::vector<Eigen::Vector3f>& positions,
   });
 }
 
-std::string Scene::checkParticleCount(std::size_t max_particles) const {
+std::string Scene::checkParticleCount(std::size_t max_particles, const std::string& limit_name) const {
   // Walking the lattice costs time but no memory; beyond this many points it is refused
   // from the bound alone (overlaps and obstacles could only take a fraction out).
   constexpr double kWalkFactor = 4.0;
@@ -677,7 +677,7 @@ std::string Scene::checkParticleCount(std::size_t max_particles) const {
   std::ostringstream why;
   if (bound > kWalkFactor * static_cast<double>(max_particles)) {
     why << "scene '" << name << "' at particle_spacing " << d << " m needs about " << bound
-        << " particles, more than ~max_particles (" << max_particles << ")";
+        << " particles, more than " << limit_name << " (" << max_particles << ")";
     return why.str();
   }
   std::size_t count = 0;
@@ -686,7 +686,7 @@ std::string Scene::checkParticleCount(std::size_t max_particles) const {
   });
   if (count > max_particles) {
     why << "scene '" << name << "' at particle_spacing " << d << " m needs more than "
-        << max_particles << " particles (~max_particles)";
+        << max_particles << " particles (" << limit_name << ")";
   } else if (count == 0) {
     why << "scene '" << name << "' has no fluid left: its obstacles cover every fluid block";
     // Name what covers the first block's middle: with a robot in the scene it is often one

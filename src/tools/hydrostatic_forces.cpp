@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "ToolArguments.h"
 #include "pbf_ros/core/Metrics.h"
 #include "pbf_ros/core/PbfSolver.h"
 #include "pbf_ros/core/SceneSetup.h"
@@ -28,14 +29,12 @@ const char* const kArgNames[] = {"", "SHAPE", "SPACING", "TANK", "DEPTH", "SIZE"
 // given; anything else ends the program naming it ("nan", "-0.04", "abc").
 double arg(int argc, char** argv, int i, double fallback) {
   if (argc <= i) return fallback;
-  char* end = nullptr;
-  const double v = std::strtod(argv[i], &end);
-  if (*argv[i] == '\0' || *end != '\0' || !std::isfinite(v) || !(v > 0.0)) {
-    std::fprintf(stderr, "pbf_hydrostatic_forces: %s expects a finite number > 0, got '%s'\n",
-                 kArgNames[i], argv[i]);
+  try {
+    return pbf_tools::finitePositive(kArgNames[i], argv[i]);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "pbf_hydrostatic_forces: %s\n", e.what());
     std::exit(2);
   }
-  return v;
 }
 }  // namespace
 
@@ -77,7 +76,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  const std::string count = scene.checkParticleCount(1000000);
+  const std::string count = scene.checkParticleCount(1000000, "this tool's limit");
   if (!count.empty()) {
     std::fprintf(stderr, "pbf_hydrostatic_forces: %s\n", count.c_str());
     return 2;

@@ -27,6 +27,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "ToolArguments.h"
 #include "pbf_ros/render/FluidRenderer.h"
 #include "pbf_ros/render/ImageWriter.h"
 
@@ -42,14 +43,9 @@ struct Options {
   std::string png_dir;
 };
 
-// An integer in [lo, hi] for `option`, or an error naming it ("abc", "-5", "2000000000").
+// Options' counts and sizes are ints.
 int intIn(const std::string& option, const std::string& text, long lo, long hi) {
-  char* end = nullptr;
-  const long v = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || v < lo || v > hi)
-    throw std::invalid_argument(option + " expects an integer in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "], got '" + text + "'");
-  return static_cast<int>(v);
+  return static_cast<int>(pbf_tools::integerIn(option, text, lo, hi));
 }
 
 Options parse(int argc, char** argv) {
@@ -67,13 +63,7 @@ Options parse(int argc, char** argv) {
     else if (arg == "--width") o.width = intIn(arg, value(), 1, 4096);
     else if (arg == "--height") o.height = intIn(arg, value(), 1, 4096);
     else if (arg == "--filter") o.filter = value();
-    else if (arg == "--sigma") {
-      const std::string text = value();
-      char* end = nullptr;
-      o.sigma = std::strtof(text.c_str(), &end);
-      if (text.empty() || *end != '\0' || !std::isfinite(o.sigma) || !(o.sigma > 0.0f))
-        throw std::invalid_argument("--sigma expects a finite number > 0, got '" + text + "'");
-    }
+    else if (arg == "--sigma") o.sigma = static_cast<float>(pbf_tools::finitePositive(arg, value()));
     else if (arg == "--shaders") o.shader_dir = value();
     else if (arg == "--png") o.png_dir = value();
     else if (arg == "--counts") {

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <string>
 
+#include "ToolArguments.h"
 #include "pbf_ros/core/FloatingBodies.h"
 #include "pbf_ros/core/FluidSources.h"
 #include "pbf_ros/core/Metrics.h"
@@ -22,21 +23,6 @@
 #ifndef PBF_SOURCE_DIR
 #define PBF_SOURCE_DIR "."
 #endif
-
-namespace {
-
-// A finite number > 0 for `option`, or exit 2 naming it ("abc", "nan", "inf", "-1", "0").
-double positiveNumber(const std::string& option, const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v) || !(v > 0.0)) {
-    std::cerr << "pbf_run: " << option << " expects a finite number > 0, got '" << text << "'\n";
-    std::exit(2);
-  }
-  return v;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   std::string scene_name = "dam_break";
@@ -55,10 +41,24 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--seconds") seconds = positiveNumber(a, value());
-    else if (a == "--spacing") spacing = static_cast<float>(positiveNumber(a, value()));
-    else if (a == "--max-particles") max_particles = static_cast<std::size_t>(positiveNumber(a, value()));
-    else if (a == "--scenes-dir") scenes_dir = value();
+    try {
+      if (a == "--seconds") {
+        seconds = pbf_tools::finitePositive(a, value());
+        continue;
+      }
+      if (a == "--spacing") {
+        spacing = static_cast<float>(pbf_tools::finitePositive(a, value()));
+        continue;
+      }
+      if (a == "--max-particles") {
+        max_particles = static_cast<std::size_t>(pbf_tools::integerIn(a, value(), 1, 1000000000));
+        continue;
+      }
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "pbf_run: " << e.what() << "\n";
+      return 2;
+    }
+    if (a == "--scenes-dir") scenes_dir = value();
     else if (a == "--track-wrenches") track_wrenches = true;
     else if (a == "--set") {
       const std::string kv = value();
@@ -85,10 +85,8 @@ int main(int argc, char** argv) {
     // Counted before anything is allocated, as the node does: a fine spacing must not take
     // the machine's memory first (--spacing 1e-5 grew by 3 GB a second).
     std::string why = scene.validate();
-    if (why.empty()) why = scene.checkParticleCount(max_particles);
+    if (why.empty()) why = scene.checkParticleCount(max_particles, "--max-particles");
     if (!why.empty()) {
-      const std::string node_option = "~max_particles";  // the scene names the node's; ours is:
-      if (const auto at = why.find(node_option); at != std::string::npos) why.replace(at, node_option.size(), "--max-particles");
       std::cerr << "pbf_run: " << why << "\n";
       return 2;
     }

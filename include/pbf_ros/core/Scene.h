@@ -95,7 +95,10 @@ struct Scene {
   // particles: "" when it does, otherwise why not (how many it would need, or that the
   // obstacles leave none). Costs O(blocks) for a lattice that clearly fits or clearly does
   // not, and never walks more than a few times max_particles lattice points.
-  std::string checkParticleCount(std::size_t max_particles) const;
+  // `limit_name` is what the message calls the limit (the node's ~max_particles, a tool's
+  // option).
+  std::string checkParticleCount(std::size_t max_particles,
+                                 const std::string& limit_name = "~max_particles") const;
 
   // Whether obstacle `index` floats (the node moves it, not tf).
   bool floats(std::size_t index) const;
