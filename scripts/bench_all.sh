@@ -45,7 +45,7 @@ stress_status=0
 nice -n 5 "$BIN/pbf_stress" --out "$OUT" "${STRESS[@]}" | tee "$OUT/pbf_stress.log" || stress_status=$?
 /usr/bin/python3 "$ROOT/scripts/plot_bench.py" "$OUT"
 # How far refinement moves the dam-break front (the dt-halved comparison needs a second run:
-# README, Validation 1).
+# doc/validation.md §1).
 [ -f "$OUT/dambreak_front.csv" ] && /usr/bin/python3 "$ROOT/scripts/front_compare.py" "$OUT" | tee "$OUT/front_compare.txt"
 
 if [ "$PUBLISH" = 1 ]; then

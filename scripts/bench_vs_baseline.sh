@@ -39,7 +39,7 @@ NATIVE=0
 WARM=0
 FAST_TOLERANCES=""
 # Warm start, Chebyshev acceleration for a tall fluid's slow Jacobi solve (rho 0.95), and
-# the doubled step validated on the dam break (README Calibration, warm start). Both act on
+# the doubled step validated on the dam break (doc/calibration.md, warm start). Both act on
 # the Jacobi solve, which the Gauss-Seidel default replaces (session 21): turned back on.
 FAST_OPTIONS="--set gauss_seidel=false --set warm_start=true --set chebyshev_rho=0.95 --set cfl_factor=0.8 --set max_time_step=0.00833333"
 FILTER='BM_DamBreakStep/kparticles:20/threads:[12]/boundary:1'

@@ -2,7 +2,7 @@
 # Prints the processes that used more than a tenth of a CPU over one second, for the
 # benchmark scripts to call before they measure. Why: under the kernel's autogroup
 # scheduling any busy process in another session, whatever its priority, takes its
-# session's share of the CPU from the node (README "Performance", OpenMP waiting), so a
+# session's share of the CPU from the node (doc/performance.md, OpenMP waiting), so a
 # ratio measured beside one is not this tree's. Never fails: it only reports.
 #
 #   scripts/busy_processes.sh [PREFIX]     # PREFIX starts each line, e.g. "[bench]"

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Which start lattices a density kernel keeps still under pressure (README, Validation 2).
+"""Which start lattices a density kernel keeps still under pressure (doc/validation.md §2).
 
 Below its free surface a resting column carries a positive multiplier lambda, and each
 correction moves the particles down the gradient of sum_i lambda C_i, C_i = rho_i / rho0 - 1:

@@ -5,7 +5,7 @@ The solver's mass is calibrated on the cubic start lattice (SolverParams::densit
 lattice particle sums to exactly rho0. A packing whose sum is lower at the same number
 density must be denser in number to reach rho0. Under gravity, with a compression-only
 constraint, a column that rearranges into such a packing falls: this prints by how much
-(README "Calibration", the start-up). Printed for the solver's density kernel, Spiky, and for
+(doc/calibration.md, the start-up). Printed for the solver's density kernel, Spiky, and for
 Wendland C2 (doc/experiments/wendland_density_kernel.patch), on which the cubic lattice is
 the densest packing at rho0 instead.
 

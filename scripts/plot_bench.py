@@ -6,7 +6,7 @@
 Reads whatever of dambreak_front.csv, dambreak_summary.csv, sweep.csv, scaling.csv,
 tank.csv, stress.csv and stress_energy.csv is in FOLDER and writes next to them:
 dambreak_front.png, hydrostatic.png, pareto.png, scaling.png, stress_energy.png and
-summary.md (the tables of the README's validation section).
+summary.md (the tables of doc/validation.md).
 Needs Debian's python3-matplotlib (run with /usr/bin/python3, not a pyenv python).
 """
 import csv

@@ -6,7 +6,7 @@ topics (a node started with another name or in a namespace), sets the particle s
 running fluid's particle spacing, subscribes to the cloud over TCP (reliable), and keeps the
 surface image displays only when asked: rendering the surface for rviz costs the simulation
 about half its real-time factor on a small machine (fluid.launch surface:=true lets the
-renderer share the CPU; README "Performance"). They are removed rather than unticked: rviz
+renderer share the CPU; doc/performance.md). They are removed rather than unticked: rviz
 1.14 re-enables an image display whose panel its saved window state shows, and subscribes.
 
   rviz_for_node.py [--node NAME] [--surface true|false] [--spacing METRES]

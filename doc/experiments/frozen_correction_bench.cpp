@@ -1,6 +1,6 @@
 // Experiment (session 18, not shipped): what one correction of a fixed-geometry density solve
 // would cost against one shipped constraint iteration, both written for AVX2 like the
-// shipped neighbour sums. README "Validation" section 2, "Fixed geometry without the
+// shipped neighbour sums. doc/validation.md §2, "Fixed geometry without the
 // relaxation", has the figures and what they mean.
 //
 //   shipped:  the lambda sums (kernel, gradient factor cached per pair) and the delta-p sums

@@ -21,8 +21,8 @@
 // of its block. The phases keep the grid's Morton order, colour by colour over the whole
 // fluid. In that order with a block's bottom cells first (session 22), a resting tank ended
 // with its floor, edges and corners at 2.5-4x the average error over rho0; whole layers of
-// blocks taken top first were as even, but their extra barriers cost 20 % (README
-// "Validation" section 2, "Top first").
+// blocks taken top first were as even, but their extra barriers cost 20 % (doc/validation.md
+// §2, "Top first").
 // Points clamped into the grid's border cells (NeighborGrid::build) lie beyond them, which
 // only moves them farther from the other blocks of their colour.
 

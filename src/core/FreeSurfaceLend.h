@@ -6,7 +6,7 @@
 // a resting lattice sums 0.886 rho0 at h = 2d. Its own constraint is then slack (unilateral),
 // so nothing holds it at its spacing: once the start lattice rearranges, the top layer sinks
 // into the second layer's hollows until its truncated sum reaches rho0, and a resting tank
-// loses ~1.5 % of its level (README "Calibration"). Lent its missing density, the top layer
+// loses ~1.5 % of its level (doc/calibration.md). Lent its missing density, the top layer
 // keeps a constraint of its own, as the container's images keep the particles by a wall.
 //
 // How one-sided a neighbourhood is, is read from the constraint's gradient with respect to

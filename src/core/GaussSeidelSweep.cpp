@@ -22,7 +22,7 @@
 // its constraints (Mueller et al. 2007), instead of all at once from the same positions
 // (Jacobi, JacobiSolve.cpp). A Jacobi iteration carries a correction one neighbourhood
 // further; a sweep carries it as far as the order allows, so a column's pressure builds in
-// fewer iterations (README "Performance", Gauss-Seidel).
+// fewer iterations (doc/performance.md, Gauss-Seidel).
 //
 // Constraint i at the current positions: C_i = rho_i / rho0 - 1 (only compression when
 // unilateral), with its gradient with respect to x_i (the neighbours, the container's
@@ -68,7 +68,7 @@ struct PbfSolver::SweepContext {
   // g of grad_i W = g (x_i - x_j) per neighbour, and the same for the image pairs by one
   // wall. They live for one projection only, so each thread reuses its own: arrays the size
   // of the lists, written and read back once per sweep, were memory traffic for nothing
-  // beyond the caches (8 % of a 256k-particle step at one thread, README "Performance").
+  // beyond the caches (8 % of a 256k-particle step at one thread, doc/performance.md).
   float* rows;
   std::size_t row_length;
   float self_density, inv_rho0, grad_scale, eps, omega, rest_density;

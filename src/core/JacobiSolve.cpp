@@ -21,7 +21,7 @@ namespace {
 // pushes overshoot (neighbours' corrections add up), so their sum exceeds the pressure that
 // holds the fluid; applied in full, a resting tank's level rose by 17-19 % even with the
 // projected solve that takes over-pushes back (ConstraintPasses.cpp), because within the
-// tolerance the surplus still becomes velocity (README "Calibration", warm start).
+// tolerance the surplus still becomes velocity (doc/calibration.md, warm start).
 constexpr float kWarmStartFraction = 0.5f;
 
 }  // namespace

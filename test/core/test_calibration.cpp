@@ -183,7 +183,7 @@ TEST(Calibration, CurvedObstacleDoesNotOverLend) {
 // first sweep leaves twice the tolerance (0.63 %), the next sweeps remove the column's
 // long mode slowly, and every sweep also moves the floor's layers sideways in the
 // pattern of the sweep's order (8.8 g dt after 28 sweeps at d = 0.02 m, 10.5 at 0.0125;
-// with a fixed number of sweeps it grows as their square root: README "Calibration",
+// with a fixed number of sweeps it grows as their square root: doc/calibration.md,
 // mass). The Jacobi solve keeps the lattice's symmetry and meets it at 1/60 s too.
 TEST(Calibration, DamBreakFirstStepMovesByGravityAlone) {
   struct Case {
@@ -208,7 +208,7 @@ TEST(Calibration, DamBreakFirstStepMovesByGravityAlone) {
 // correction is not along the gradient of the density it corrects, does work, and keeps the
 // water moving for ever: rms speed ~0.1 m/s at the shipped defaults and ~0.35 m/s at a fixed
 // dt of 1/480 s (more steps, more work). One kernel for both (Kernels.h): 0.035 m/s at the
-// shipped defaults; at 1/480 s still 0.07 m/s (README "Calibration": not yet at rest).
+// shipped defaults; at 1/480 s still 0.07 m/s (doc/calibration.md: not yet at rest).
 TEST(Calibration, RestingTankComesToRest) {
   pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
   auto solver = pbf_test::makeSolver(scene);

@@ -101,7 +101,7 @@ TEST(FloatingBodies, BoxOfHalfTheWatersDensityFloatsHalfSubmerged) {
               100.0 * (implied_draft / 0.05 - 1.0), tilt);
   EXPECT_NEAR(implied_draft, 0.05, 0.05 * 0.05);
   // The measured surface: 0.3 mm below the implied level with the free surface lent
-  // (README "Calibration"), ~0.2 spacings below it without.
+  // (doc/calibration.md), ~0.2 spacings below it without.
   EXPECT_NEAR(measured_draft, 0.05, 0.08 * 0.05);
   EXPECT_LT(tilt, 0.1);  // a flat box of this density floats flat
 }

@@ -83,7 +83,7 @@ TEST(FreeSurfaceLend, FreshLatticeSumsToRestDensityAtItsSurfaceAndWalls) {
 // into the second's hollows and the free surface (the colour field's half level) falls 0.65 %
 // short of what the volume implies; with it, 0.35 %. What the lend does not hold is the
 // bulk's: the cubic start lattice relaxes into a packing 0.3 % denser at the same kernel sum,
-// in a closed box filled to its lid as well (README "Calibration", the start-up).
+// in a closed box filled to its lid as well (doc/calibration.md, the start-up).
 TEST(FreeSurfaceLend, RestingTankKeepsTheLevelItsVolumeImplies) {
   pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
   scene.solver.density_tolerance = 3e-4f;

@@ -1,5 +1,5 @@
 // The Chebyshev acceleration at an aggressive spectral radius (0.95, with the warm start and
-// the doubled step: the 1 m^3 comparison's fast options, README Performance) through the
+// the doubled step: the 1 m^3 comparison's fast options, doc/performance.md) through the
 // stress cases it once failed: a fixed step of 1/60 s gained energy (1.12 of the physical
 // bound) and a start with coincident pairs kept 12 times its settled energy, because every
 // restart of the recurrence began again with its largest extrapolation (omega 1.82 where it

@@ -22,7 +22,7 @@ class SolidBoundaries;
 // right after the iteration misbehaved, would re-enter that phase. Uncapped, rho = 0.95
 // gained energy at large steps and kept an overlapping start's energy (pbf_stress: fixed
 // 1/60, 1/30, 1/15 s, overlapping starts); capped, the same cases pass and the 1 m^3 dam
-// break converges as fast (README, Calibration).
+// break converges as fast (doc/calibration.md).
 class ChebyshevAcceleration {
  public:
   // Start of a solve from positions q0; rho in [0, 0.99] (SolverParams), 0: off.

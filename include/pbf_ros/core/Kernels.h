@@ -4,7 +4,7 @@
 // level set. The seed (Mueller et al. 2003, Macklin & Mueller 2013) sums the density with
 // Poly6 but takes the Spiky gradient: that gradient is not the gradient of the density it
 // corrects, the correction then has a part along the level set, and that part does work:
-// a tank at rest never comes to rest (README "Calibration"). Poly6 stays the smoothing
+// a tank at rest never comes to rest (doc/calibration.md). Poly6 stays the smoothing
 // kernel of XSPH and s_corr, which are filters, not the constraint. Constants are
 // precomputed once per support radius h.
 

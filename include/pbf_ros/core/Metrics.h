@@ -21,7 +21,7 @@ double freeSurfaceHeight(const std::vector<Eigen::Vector3f>& positions, float sp
 
 // The particles' mean height above the container floor [m]. Twice it is the level of a
 // uniform column with the water's potential energy: its drop is the fluid's compaction,
-// however the surface's layers sit (README "Calibration", the start-up and the level).
+// however the surface's layers sit (doc/calibration.md, the start-up and the level).
 double meanHeightAboveFloor(const std::vector<Eigen::Vector3f>& positions, const Eigen::AlignedBox3f& container);
 
 // Number of particles farther than `tolerance` outside the box.

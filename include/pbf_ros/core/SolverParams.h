@@ -20,11 +20,11 @@ struct SolverParams {
   float cfl_factor = 0.4f;             // max displacement per step as a fraction of d
   float min_time_step = 1.0e-5f;       // [s]
   // 1/240 s: the error at rest scales with g dt^2; with the tolerance below this keeps a
-  // settled tank under 0.3 % compression (Pareto study, README "Validation").
+  // settled tank under 0.3 % compression (Pareto study, doc/validation.md).
   float max_time_step = 1.0f / 240.0f; // [s]
 
   // --- constraint solve ----------------------------------------------------------------
-  // Shipped defaults from the Pareto study (README "Validation"): iterate until the average
+  // Shipped defaults from the Pareto study (doc/validation.md): iterate until the average
   // density error is below 0.3 % (about 3 Gauss-Seidel sweeps at rest, 1-2 in a dam break).
   // min_iterations 0 (the default) is the solve's own floor: one Gauss-Seidel sweep, or two
   // Jacobi corrections, because one Jacobi correction overshoots where corrections overlap
@@ -56,23 +56,22 @@ struct SolverParams {
   // multiplier projected (a push can be taken back, at IISPH's relaxation of one half), and
   // density_tolerance bounds what is left to correct: compression and over-push. Off by
   // default: at the shipped tolerance it halves the density error at the same cost instead
-  // of saving iterations; it pays at tight tolerances (README "Calibration", warm start).
+  // of saving iterations; it pays at tight tolerances (doc/calibration.md, warm start).
   bool warm_start = false;
   // Chebyshev acceleration of the constraint iterations (ChebyshevAcceleration.h): rho is
   // the assumed spectral radius of the plain Jacobi iteration, in [0, 0.99]; 0: off. Too
   // low only accelerates less; too high would diverge, so the solve restarts the
-  // acceleration whenever its error grows. 0.9 is the recommended value (README
-  // "Calibration", acceleration). Like the warm start, it makes the solve projected. Not
+  // acceleration whenever its error grows. 0.9 is the recommended value (doc/calibration.md,
+  // acceleration). Like the warm start, it makes the solve projected. Not
   // applied while the solver measures the solids' wrenches (floating bodies, force topics).
   float chebyshev_rho = 0.0f;
   // Gauss-Seidel: the density constraints are projected one after another, each from the
   // positions the ones before it left (as PBD projects its constraints; GaussSeidelSweep.cpp),
   // instead of all at once from the same positions (Jacobi). A pressure then crosses the
-  // fluid in fewer iterations: 2-2.7x fewer for the same tolerance (README "Performance").
+  // fluid in fewer iterations: 2-2.7x fewer for the same tolerance (doc/performance.md).
   // The order is fixed by the grid (8 colours of blocks of cells, BlockColours.h), so results are the
   // same for any thread count. An iteration is one sweep, after which a density pass checks
-  // the tolerance (the step then reuses that density). The default since session 21 (README
-  // "Performance"). It replaces the Jacobi solve, so it does not combine with warm_start,
+  // the tolerance (the step then reuses that density). The default since session 21 (doc/performance.md). It replaces the Jacobi solve, so it does not combine with warm_start,
   // chebyshev_rho or scorr_k (setParams says so; set gauss_seidel false to use them).
   bool gauss_seidel = true;
   // Over-relaxation of each Gauss-Seidel projection (SOR), in (0, 2): 1 is plain
@@ -85,7 +84,7 @@ struct SolverParams {
   bool unilateral_constraint = true;
   // Lend each particle by a free surface the density the air side would add were it fluid
   // (FreeSurfaceLend.h): the top layer then keeps a constraint of its own instead of sinking
-  // into the layer below, and a resting tank keeps its level (README "Calibration"). A
+  // into the layer below, and a resting tank keeps its level (doc/calibration.md). A
   // particle is lent what its neighbourhood lacked when it entered the fluid and loses it as
   // it is buried; a surface formed later is not lent. Off: the truncated sums of the seed.
   bool free_surface_lend = true;

@@ -58,7 +58,7 @@ struct SurfaceStartup {
   // solver: with OMP_WAIT_POLICY=passive its threads sleep at every barrier, and llvmpipe's
   // threads at nice 10 still took ~40 % of each core (the default scene's real-time factor
   // fell from 0.22 to 0.12 with the image subscribed; 0.20 with this). When the solver uses
-  // every core, frames come less often instead (README "Performance").
+  // every core, frames come less often instead (doc/performance.md).
   bool idle_priority = true;
 };
 SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh);
