@@ -51,7 +51,7 @@ class LatticeBoundary {
 };
 
 // Sum of the density kernel (Spiky, Kernels.h) over the infinite cubic lattice of spacing d,
-// times d^3, for h = factor * d: 1 for a continuum, 1.2365 for factor 2 (the kernel's peak
+// times d^3, for h = factor * d: 1 for a continuum, 1.23589 for factor 2 (the kernel's peak
 // at r = 0 makes the self term alone 0.597). The particle mass that puts a
 // lattice particle at exactly rho0 is rho0 d^3 / this.
 double latticeKernelSum(double support_radius_factor);

@@ -2,8 +2,9 @@
 // ~wrench/<name> (geometry_msgs/WrenchStamped): the fluid's force and torque on each solid,
 // averaged over the simulated time since the topic's previous message (a single step's
 // value jitters with the particles), published at ~wrench_rate [Hz, wall clock] to the
-// topics someone subscribes to. The solver measures wrenches only while one of these topics
-// has a subscriber (or ~track_wrenches is true): otherwise they cost nothing.
+// topics someone subscribes to. wanted() asks the solver to measure only while one of these
+// topics has a subscriber (or ~track_wrenches is true); a scene's floating bodies turn
+// measuring on for themselves (FloatingBodies::prepare). Otherwise wrenches cost nothing.
 // Simulation thread only.
 
 #include <map>
