@@ -48,6 +48,7 @@ add_library(pbf_core
   src/core/SignedDistanceGrid.cpp
   src/core/Boundaries.cpp
   src/core/FreeSurfaceLend.cpp
+  src/core/NewParticleLends.cpp
   src/core/LatticeBoundary.cpp)
 target_include_directories(pbf_core PUBLIC include)
 target_link_libraries(pbf_core PUBLIC Eigen3::Eigen OpenMP::OpenMP_CXX yaml-cpp)

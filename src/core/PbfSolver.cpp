@@ -231,6 +231,11 @@ bool PbfSolver::attemptStep(float dt, StepStats& stats) {
   if (track_wrenches_)
     wrench_sums_.reset(SolidBoundaries::kContainerFaces + obstacles_.size(), omp_get_max_threads());
   auto t = Clock::now();
+  try {
+    measureNewLends();  // before gravity moves them (NewParticleLends.cpp)
+  } catch (const std::length_error&) {
+    return false;  // more neighbour pairs than memory allows: reject, as below
+  }
   const bool predicted_finite = predict(dt);
   if (predicted_finite) {
     updateFluidReach();

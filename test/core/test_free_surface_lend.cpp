@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -76,6 +77,43 @@ TEST(FreeSurfaceLend, FreshLatticeSumsToRestDensityAtItsSurfaceAndWalls) {
       else
         EXPECT_LT(rho, 0.9f) << name << ": the truncated sum the lend makes up";
     }
+  }
+}
+
+// A fresh lattice is lent where it entered the fluid, not where the first step's gravity
+// pushed it: in one step of 1/60 s the shipped tank's column moves 0.136 d into the floor,
+// which makes the layers over it one-sided. Measured there (until session 37), the floor's
+// layers were lent as if they were a free surface and looked compressed by up to 27 %. Lent
+// at the start positions, the floor and the interior are lent nothing at every step, and
+// the top layer its deficit.
+TEST(FreeSurfaceLend, FirstStepLendsTheLatticeAsItStartsWhateverTheStep) {
+  pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
+  const float d = scene.solver.particle_spacing, rho0 = scene.solver.rest_density;
+  const pbf::FreeSurfaceLend table(d, scene.solver.supportRadius());
+  for (const float dt : {1e-4f, 1.0f / 240.0f, 1.0f / 60.0f}) {
+    auto solver = pbf_test::makeSolver(scene);
+    float top_z = -1e9f;
+    for (const auto& p : scene.fluid) top_z = std::max(top_z, p.max.z() - 0.5f * d);
+    solver->stepWith(dt);
+    double floor_lend = 0.0, top_lend = 0.0;
+    int floor_count = 0, top_count = 0;
+    for (std::size_t i = 0; i < solver->size(); ++i) {
+      const float z = solver->positions()[i].z();
+      const float lend = solver->surfaceLend(i) / rho0;
+      if (z < 1.5f * d) {  // the two layers over the floor
+        floor_lend = std::max<double>(floor_lend, lend);
+        ++floor_count;
+      } else if (z > top_z - 0.5f * d) {
+        top_lend += lend;
+        ++top_count;
+      }
+    }
+    ASSERT_GT(floor_count, 0);
+    ASSERT_GT(top_count, 0);
+    std::printf("dt %.5f s: largest lend over the floor %.5f rho0, mean lend of the top layer %.4f rho0\n",
+                dt, floor_lend, top_lend / top_count);
+    EXPECT_LT(floor_lend, 1e-3) << "dt " << dt << ": the floor's layers are not a free surface";
+    EXPECT_NEAR(top_lend / top_count, table.latticeTopDeficit(), 0.01) << "dt " << dt;
   }
 }
 

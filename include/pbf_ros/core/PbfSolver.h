@@ -168,6 +168,9 @@ class PbfSolver {
   // Where the particles can be during the attempt in progress (FluidReach.cpp): obstacles
   // whose reach misses it are left out of every per-particle boundary test.
   void updateFluidReach();
+  // The free surface's lend of particles that have none yet, measured at the positions the
+  // step starts from (NewParticleLends.cpp); rebuilds the lists there when there are any.
+  void measureNewLends();
   // Wrench tracking (WrenchTracking.cpp): what the solids did to the particles, by solid.
   void recordBoundaryDensityPush(const SolidBoundaries& solids);
   void applyDeltasRecordingBoundary(const SolidBoundaries& solids);
