@@ -29,7 +29,9 @@
 // the lend does not depend on the depth at all), and the tank's level rose by 1 %. So a
 // particle is lent what its neighbourhood lacked when it first entered the fluid, and loses
 // it as it is buried; a free surface that forms later (a splash, a surge) is not lent, as
-// without the option.
+// without the option. That first measurement is taken where the step starts
+// (NewParticleLends.cpp), before gravity pushes the fluid into the solids: measured at the
+// predicted positions, a long step's compressed layers over the floor read as one-sided.
 
 #include <vector>
 
@@ -37,7 +39,7 @@ namespace pbf {
 
 class FreeSurfaceLend {
  public:
-  // Not yet measured: a particle that has not been through a step's first pass.
+  // Not yet measured: a particle that has not started a step yet.
   static constexpr float kUnmeasured = -1.0f;
 
   FreeSurfaceLend(float spacing, float support_radius);
@@ -45,8 +47,8 @@ class FreeSurfaceLend {
   // The lend, as a fraction of rho0, for a one-sided gradient of norm grad_norm [1/m].
   float fraction(float grad_norm) const;
 
-  // A particle's lend [kg/m^3] after this step's first pass: its first measurement, or the
-  // smaller of what it kept and what its one-sided gradient now shows (see above).
+  // A particle's lend [kg/m^3]: its first measurement (kept = kUnmeasured), or the smaller of
+  // what it kept and what its one-sided gradient now shows (each step's first pass).
   float lowered(float kept, float grad_norm, float rest_density) const {
     const float now = rest_density * fraction(grad_norm);
     return kept < 0.0f ? now : (now < kept ? now : kept);
