@@ -12,9 +12,10 @@ namespace pbf_bench {
 void runScalingStudy(const BenchOptions& options);
 
 // The dam-break column (0.4 x 0.5 x 0.8 m = 0.16 m^3) at the spacing giving about `count`
-// particles, timed at rest right after release: every particle has its full neighbourhood,
-// the expensive case. 4 fixed iterations, fixed dt 1/400 s (as pbf_step_benchmark); the
-// options' --set overrides applied last.
+// particles, timed once it flows (from 0.25 s simulated, as pbf_step_benchmark; until
+// session 37 the third to seventh steps after release, whose state depended on how the
+// lattice met the walls at each spacing). 4 fixed iterations, fixed dt 1/400 s (as
+// pbf_step_benchmark); the options' --set overrides applied last.
 pbf::Scene scalingScene(const BenchOptions& options, int count);
 
 // Least-squares slope of log(y) against log(x).
