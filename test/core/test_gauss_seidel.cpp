@@ -359,8 +359,8 @@ FloorLayers settledFloorLayers(const Eigen::Vector3f& gravity, double seconds, f
 // What the top-first order is for: at the shipped tolerance (0.3 % on average) a settled
 // tank's floor layer and bottom corners sit within 0.5 % of rest density, whichever wall
 // gravity points to and wherever the floor falls in a block of cells. Projected bottom first
-// (the grid's Morton order) the floor layer sat at 1.007 and the corners at 1.012 (doc/validation.md
-// §2); with only the Morton order reversed, the tank hung from its lid
+// (the grid's Morton order) the floor layer sat at 1.007 and the corners at 1.012
+// (doc/validation.md §2); with only the Morton order reversed, the tank hung from its lid
 // (gravity +z), or raised by 0.04 m, sat there again.
 TEST(GaussSeidel, ASettledTanksFloorAndCornersSitWithinHalfAPercentWhereverGravityPoints) {
   for (const Eigen::Vector3f& gravity :

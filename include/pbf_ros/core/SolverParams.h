@@ -71,8 +71,10 @@ struct SolverParams {
   // fluid in fewer iterations: 2-2.7x fewer for the same tolerance (doc/performance.md).
   // The order is fixed by the grid (8 colours of blocks of cells, BlockColours.h), so results are the
   // same for any thread count. An iteration is one sweep, after which a density pass checks
-  // the tolerance (the step then reuses that density). The default since session 21 (doc/performance.md). It replaces the Jacobi solve, so it does not combine with warm_start,
-  // chebyshev_rho or scorr_k (setParams says so; set gauss_seidel false to use them).
+  // the tolerance (the step then reuses that density). The default since session 21
+  // (doc/performance.md). It replaces the Jacobi solve, so it does not combine with
+  // warm_start, chebyshev_rho or scorr_k (setParams says so; set gauss_seidel false to use
+  // them).
   bool gauss_seidel = true;
   // Over-relaxation of each Gauss-Seidel projection (SOR), in (0, 2): 1 is plain
   // Gauss-Seidel; above 1 each constraint over-corrects by this factor, which carries the
