@@ -129,7 +129,7 @@ void FluidNode::stepOnce() {
                        "too long for the forces (time_step, gravity); state kept, ~reset starts again",
                        static_cast<unsigned long long>(solver_->stepCount()), last_stats_.nan_retries,
                        last_stats_.dense_retries, solver_->neighborPairBound());
-  } else if (last_stats_.dense_retries > 0 && !last_stats_.failed) {
+  } else if (last_stats_.dense_retries > 0) {  // retried, then succeeded
     ROS_WARN_THROTTLE(10.0, "pbf_node: step %llu retried with a shorter time step %d times because the "
                       "particles were packed far denser than a fluid (more than %zu neighbour pairs): "
                       "the time step is too long for the forces (time_step, gravity)",
