@@ -17,7 +17,8 @@ catkin_add_gtest(test_ros_units
   test/ros/test_stats_and_health.cpp
   test/ros/test_tf_attachments.cpp
   test/ros/test_tf_stamp_gate.cpp
-  test/ros/test_wrench_targets.cpp)
+  test/ros/test_wrench_targets.cpp
+  test/ros/test_topic_rate_diagnostic.cpp)  # last: it sets simulated time for the process
 if(TARGET test_ros_units)
   # catkin links gtest but not its main().
   target_link_libraries(test_ros_units pbf_ros_node gtest_main)

@@ -2,6 +2,8 @@
 
 #include <diagnostic_msgs/DiagnosticStatus.h>
 
+#include <stdexcept>
+
 namespace pbf_ros {
 
 TopicRateDiagnostic::TopicRateDiagnostic(const std::string& name,
@@ -28,15 +30,29 @@ void TopicRateDiagnostic::run(diagnostic_updater::DiagnosticStatusWrapper& statu
     status.add("Maximum expected frequency (Hz)", max_hz_);
     return;
   }
-  if (!measuring_) {
+  // FrequencyStatus measures on the ROS clock. Across a jump of that clock (a /clock that
+  // goes back, or a replayed bag's far jump) its window means nothing, and a jump beyond
+  // 2^31 s made its ros::Time subtraction throw out of the diagnostics timer, which took
+  // the node down: measure again from now instead.
+  const double now = ros::Time::now().toSec();
+  const bool jumped = measuring_ && !(now >= last_report_ && now - last_report_ < kLongestWindow);
+  last_report_ = now;
+  if (!measuring_ || jumped) {
     // The topic just started flowing: measure from now on, judge from the next report.
     frequency_.clear();
     measuring_ = true;
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "started; measuring the rate");
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK,
+                   jumped ? "the ROS clock jumped; measuring the rate again" : "started; measuring the rate");
     status.add("Maximum expected frequency (Hz)", max_hz_);
     return;
   }
-  frequency_.run(status);
+  try {
+    frequency_.run(status);
+  } catch (const std::runtime_error&) {  // ros::Time out of range, should the clock still jump
+    frequency_.clear();
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "the ROS clock jumped; measuring the rate again");
+    status.add("Maximum expected frequency (Hz)", max_hz_);
+  }
 }
 
 }  // namespace pbf_ros

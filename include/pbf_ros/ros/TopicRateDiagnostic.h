@@ -31,6 +31,10 @@ class TopicRateDiagnostic : public diagnostic_updater::DiagnosticTask {
   std::mutex mutex_;  // guards what follows; FrequencyStatus reads min_hz_/max_hz_ in run()
   double min_hz_ = 0.0, max_hz_ = 0.0;
   bool measuring_ = false;  // the previous report measured (the window is valid)
+  // The ROS time of the previous report [s]; reports further apart than this, or going back,
+  // mean the clock jumped (the updater reports about once a wall second).
+  double last_report_ = 0.0;
+  static constexpr double kLongestWindow = 3600.0;
   std::function<std::string()> idle_;
   diagnostic_updater::FrequencyStatus frequency_;
 };
