@@ -83,11 +83,19 @@ void FluidNode::stepOnce() {
     // pose at this step's time and wait a little for a publisher that is behind. On the
     // wall clock the step's stamp lags real time below real-time speed: take the latest.
     const ros::Time time = publish_clock_ ? stamp() : ros::Time(0);
-    const std::vector<std::string> missing =
-        attachments_->update(scene_, *solver_, time, kMaxTfWait);
-    if (!missing.empty()) {
+    const TfAttachments::Report tf = attachments_->update(scene_, *solver_, time, kMaxTfWait);
+    if (!tf.missing.empty()) {
       ROS_WARN_THROTTLE(10.0, "pbf_node: no tf for frame '%s' (%s -> it) yet; its solid stays put",
-                        missing.front().c_str(), domain_frame_.c_str());
+                        tf.missing.front().c_str(), domain_frame_.c_str());
+    }
+    if (!tf.non_finite.empty()) {
+      ROS_WARN_THROTTLE(10.0, "pbf_node: frame '%s' has a non-finite pose in tf (%s -> it); its solid "
+                        "keeps its previous pose", tf.non_finite.front().c_str(), domain_frame_.c_str());
+    }
+    if (!tf.behind.empty()) {
+      ROS_WARN_THROTTLE(10.0, "pbf_node: frame '%s' sent no pose for %.3g simulated s although its next "
+                        "one was due; its solid holds the latest (is its publisher on /clock, and alive?)",
+                        tf.behind.front().first.c_str(), tf.behind.front().second);
     }
   } catch (const std::exception& e) {  // a non-finite pose: keep the previous one
     ROS_WARN_THROTTLE(10.0, "pbf_node: ignoring an attached frame's pose: %s", e.what());

@@ -1,9 +1,12 @@
 // TfAttachments on a tf buffer filled here (no master): a solid attached to a frame is placed
 // where tf has that frame at the step's time (interpolated), or at the latest pose on the
-// wall clock (time 0); a publisher that is behind the step is waited for a bounded time.
+// wall clock (time 0); a publisher that is behind the step is waited for a bounded time, but
+// only when its next pose is due, once per frame, and not again after a wait in vain.
 #include <gtest/gtest.h>
 
 #include <geometry_msgs/TransformStamped.h>
+
+#include <limits>
 
 #include "pbf_ros/core/SceneSetup.h"
 #include "pbf_ros/ros/TfAttachments.h"
@@ -48,7 +51,7 @@ TEST(TfAttachments, SolidsArePlacedAtTheStepsTimeOrTheLatestPose) {
   auto x = [&] { return solver.obstacles()[0].pose.translation(); };
 
   // On /clock: the step's time, interpolated; the collision offset applied in the link frame.
-  EXPECT_TRUE(tf.update(scene, solver, ros::Time(1.5), 0.02).empty());
+  EXPECT_TRUE(tf.update(scene, solver, ros::Time(1.5), 0.02).missing.empty());
   EXPECT_NEAR(x().x(), 0.2f, 1e-5f);
   EXPECT_NEAR(x().z(), 0.2f, 1e-6f);
   tf.update(scene, solver, ros::Time(1.25), 0.02);
@@ -66,12 +69,67 @@ TEST(TfAttachments, SolidsArePlacedAtTheStepsTimeOrTheLatestPose) {
   // A frame tf does not know: the solid stays, and its name is reported after the grace.
   pbf::Scene lost = scene;
   lost.obstacles[0].frame = "nowhere";
-  EXPECT_TRUE(tf.update(lost, solver, ros::Time(1.5), 0.0).empty());  // within the grace
+  EXPECT_TRUE(tf.update(lost, solver, ros::Time(1.5), 0.0).missing.empty());  // within the grace
   EXPECT_NEAR(x().x(), 0.3f, 1e-5f);
   Eigen::Isometry3f pose;
   EXPECT_FALSE(tf.currentPose("nowhere", pose));
   ASSERT_TRUE(tf.currentPose("link", pose));
   EXPECT_NEAR(pose.translation().x(), 0.3f, 1e-5f);
+}
+
+
+// Seconds of wall time one update takes.
+template <typename Update>
+double wallSecondsOf(Update update) {
+  const ros::WallTime before = ros::WallTime::now();
+  update();
+  return (ros::WallTime::now() - before).toSec();
+}
+
+// A publisher on the node's /clock sends its next pose only once the simulation reaches it:
+// between two of its poses the steps take the latest without waiting (a pouring cup at 60 Hz
+// made every step between its poses wait, real-time factor 0.05). When its next pose is due,
+// the step waits once per frame, however many solids the frame carries, and a publisher that
+// did not come is not waited for again until it sends a newer pose.
+TEST(TfAttachments, WaitsOnlyForAPoseThatIsDueAndOncePerFrame) {
+  ros::Time::init();
+  auto buffer = std::make_shared<tf2_ros::Buffer>();
+  ASSERT_TRUE(buffer->setTransform(linkAt(1.0, 0.1), "test"));
+  pbf::Scene scene = sceneWithALinkSolid();
+  for (int k = 0; k < 4; ++k) scene.obstacles.push_back(scene.obstacles.front());  // five on "link"
+  pbf::PbfSolver solver;
+  pbf::setUpSolver(scene, solver);
+  pbf_ros::TfAttachments tf("fluid_domain", buffer);
+  constexpr double kWait = 0.2;  // [wall s] per wait: five waits would take 1 s
+
+  // Its interval not known yet: due, waited for once for the five solids, in vain.
+  pbf_ros::TfAttachments::Report report;
+  const double first = wallSecondsOf([&] { report = tf.update(scene, solver, ros::Time(1.5), kWait); });
+  EXPECT_GE(first, 0.9 * kWait);
+  EXPECT_LT(first, 3.0 * kWait);
+  ASSERT_EQ(report.behind.size(), 1u);
+  EXPECT_EQ(report.behind[0].first, "link");
+  EXPECT_NEAR(report.behind[0].second, 0.5, 1e-9);
+  // Waited for in vain since its latest pose: not again.
+  EXPECT_LT(wallSecondsOf([&] { report = tf.update(scene, solver, ros::Time(1.6), kWait); }), 0.5 * kWait);
+  EXPECT_TRUE(report.behind.empty());
+
+  // A newer pose: its interval is 1 s, so at 2.5 s the next is not due yet (no wait), at 3 s it is.
+  ASSERT_TRUE(buffer->setTransform(linkAt(2.0, 0.3), "test"));
+  EXPECT_LT(wallSecondsOf([&] { report = tf.update(scene, solver, ros::Time(2.5), kWait); }), 0.5 * kWait);
+  EXPECT_TRUE(report.behind.empty());
+  EXPECT_NEAR(solver.obstacles()[4].pose.translation().x(), 0.3f, 1e-5f);  // the latest pose
+  EXPECT_GE(wallSecondsOf([&] { report = tf.update(scene, solver, ros::Time(3.0), kWait); }), 0.9 * kWait);
+  ASSERT_EQ(report.behind.size(), 1u);
+
+  // A pose tf holds but that is not finite (tf2 takes infinities): named, the solid stays.
+  geometry_msgs::TransformStamped far = linkAt(4.0, std::numeric_limits<double>::infinity());
+  ASSERT_TRUE(buffer->setTransform(far, "test"));
+  report = tf.update(scene, solver, ros::Time(0), kWait);
+  ASSERT_EQ(report.non_finite.size(), 1u);
+  EXPECT_EQ(report.non_finite[0], "link");
+  EXPECT_TRUE(report.missing.empty());
+  EXPECT_NEAR(solver.obstacles()[0].pose.translation().x(), 0.3f, 1e-5f);
 }
 
 }  // namespace
