@@ -22,6 +22,7 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
     return;
   }
 
+  for (const std::string& note : rangeEndNotes(config, applied_config_)) ROS_WARN("pbf_node: %s", note.c_str());
   for (const std::string& note : sanitizeConfig(config, applied_config_)) refuse(note);
 
   // What the user has set (start-up parameters, earlier requests, this request) stays set

@@ -95,6 +95,30 @@ T valueOf(const FluidConfig::AbstractParamDescriptionConstPtr& desc, const Fluid
 
 }  // namespace
 
+std::vector<std::string> rangeEndNotes(const FluidConfig& config, const FluidConfig& in_force) {
+  std::vector<std::string> notes;
+  const FluidConfig& min = FluidConfig::__getMin__();
+  const FluidConfig& max = FluidConfig::__getMax__();
+  auto note = [&](const auto& desc, auto value, auto lo, auto hi) {
+    std::ostringstream text;
+    text << desc->name << " = " << value << " is the " << (value == lo ? "lower" : "upper")
+         << " end of its range [" << lo << ", " << hi
+         << "]: requests beyond it are clamped to it before the node sees them";
+    notes.push_back(text.str());
+  };
+  for (const auto& desc : FluidConfig::__getParamDescriptions__()) {
+    if (desc->type == "double") {
+      const double value = valueOf<double>(desc, config), lo = valueOf<double>(desc, min),
+                   hi = valueOf<double>(desc, max);
+      if (value != valueOf<double>(desc, in_force) && (value == lo || value == hi)) note(desc, value, lo, hi);
+    } else if (desc->type == "int") {
+      const int value = valueOf<int>(desc, config), lo = valueOf<int>(desc, min), hi = valueOf<int>(desc, max);
+      if (value != valueOf<int>(desc, in_force) && (value == lo || value == hi)) note(desc, value, lo, hi);
+    }
+  }
+  return notes;
+}
+
 std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& in_force) {
   std::vector<std::string> notes;
   const FluidConfig& min = FluidConfig::__getMin__();

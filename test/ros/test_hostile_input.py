@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Live hostile input (issue 11): every failed scene change is a named refusal after which
 the reconfigure server reports the scene that runs; a spacing asking for millions of
-particles is refused before anything is allocated; Fluid.cfg's range ends are usable;
+particles is refused before anything is allocated, a negative one by name; Fluid.cfg's
+range ends are usable;
 non-finite start-up values fall back to Fluid.cfg's defaults."""
 import math
 import os
@@ -15,7 +16,8 @@ import rospy
 import rostest
 import tf2_ros
 
-from fluid_test_util import NODE, stats_listener
+from diagnostic_msgs.msg import DiagnosticArray
+from fluid_test_util import NODE, SIMULATION, Latest, stats_listener
 
 
 def peak_rss_mb(node_name):
@@ -80,6 +82,26 @@ class HostileInputTest(unittest.TestCase):
         config = self.client.update_configuration({'particle_spacing': 0.01})
         self.assertAlmostEqual(config['particle_spacing'], 0.2)
         self.assertLess(peak_rss_mb(NODE) - before, 50.0)
+        self.assert_still_running(count)
+
+    def test_a_negative_spacing_is_refused_as_not_positive(self):
+        # The reconfigure server clamps a request to Fluid.cfg's range before the node sees
+        # it. With a range from 0.005 m, -1 arrived as 0.005 and rebuilt a fluid with the
+        # finest spacing (384 000 particles in a probe's tank); here it would have been refused
+        # for its particle count, for the wrong reason. The range now starts at 0: the node
+        # refuses the spacing itself, by name.
+        count = self.stats.next(timeout=20.0).particle_count
+        diagnostics = Latest('/diagnostics', DiagnosticArray)
+        try:
+            config = self.client.update_configuration({'particle_spacing': -1.0})
+            self.assertAlmostEqual(config['particle_spacing'], 0.2)
+            refused = lambda s: s.name == SIMULATION and any(
+                kv.key == 'last refused request' and 'particle_spacing must be a finite number > 0'
+                in kv.value for kv in s.values)
+            self.assertIsNotNone(diagnostics.next(
+                timeout=20.0, condition=lambda m: any(refused(s) for s in m.status)))
+        finally:
+            diagnostics.close()
         self.assert_still_running(count)
 
     def test_non_finite_start_up_values_fall_back_to_the_defaults(self):

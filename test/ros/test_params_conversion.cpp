@@ -188,11 +188,35 @@ FluidConfig withBound(const FluidConfig::AbstractParamDescriptionConstPtr& desc,
 TEST(ParamsConversion, EveryAdvertisedRangeEndIsUsable) {
   // What Fluid.cfg offers (rqt's sliders, dynparam) the solver must accept: scorr_delta_q's
   // advertised minimum 0 used to be refused by the solver.
+  // One exception, on purpose: particle_spacing's range starts at 0, where the solver refuses
+  // it by name, because the server clamps a request to the range before the node sees it
+  // (a typed -1 must arrive as something the node refuses, not as a fine spacing).
   for (const auto& desc : FluidConfig::__getParamDescriptions__()) {
     for (const FluidConfig* bound : {&FluidConfig::__getMin__(), &FluidConfig::__getMax__()}) {
       const FluidConfig config = withBound(desc, *bound);
-      EXPECT_EQ(pbf_ros::configToSolverParams(config).validate(), "")
-          << desc->name << " at its " << (bound == &FluidConfig::__getMin__() ? "min" : "max");
+      const std::string invalid = pbf_ros::configToSolverParams(config).validate();
+      if (desc->name == "particle_spacing" && bound == &FluidConfig::__getMin__()) {
+        EXPECT_NE(invalid.find("particle_spacing must be a finite number > 0"), std::string::npos) << invalid;
+        continue;
+      }
+      EXPECT_EQ(invalid, "") << desc->name << " at its " << (bound == &FluidConfig::__getMin__() ? "min" : "max");
     }
   }
+}
+
+// The server clamps a request to Fluid.cfg's range before the node sees it: a changed value
+// at an end of its range is named with the range, one untouched at an end is not.
+TEST(ParamsConversion, ChangedValuesAtAnEndOfTheirRangeAreNamed) {
+  FluidConfig in_force = FluidConfig::__getDefault__();
+  in_force.max_speed_factor = FluidConfig::__getMin__().max_speed_factor;  // set earlier, not now
+  FluidConfig request = in_force;
+  request.gravity_z = FluidConfig::__getMin__().gravity_z;       // -1e9 asked, -100 arrives
+  request.render_width = FluidConfig::__getMax__().render_width;  // 100000 asked, 4096 arrives
+  request.xsph_viscosity = 0.0001;                                // inside its range
+  const auto notes = pbf_ros::rangeEndNotes(request, in_force);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_TRUE(mentions(notes, "gravity_z = -100 is the lower end of its range [-100, 100]"));
+  EXPECT_TRUE(mentions(notes, "render_width = 4096 is the upper end of its range"));
+  EXPECT_FALSE(mentions(notes, "max_speed_factor"));
+  EXPECT_TRUE(pbf_ros::rangeEndNotes(in_force, in_force).empty());
 }

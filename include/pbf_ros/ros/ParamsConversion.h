@@ -35,6 +35,12 @@ pbf::SolverParams configToSolverParams(const FluidConfig& config,
 // Returns the notes (empty when the config was already fine).
 std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& in_force);
 
+// Notes on the numbers `config` changes from `in_force` to an end of their Fluid.cfg range.
+// The reconfigure server clamps a request to that range before the node sees it, so a value
+// at an end may stand for one beyond it (a typed -1 arrives as the range's minimum): say so,
+// naming the range. Empty when no changed value sits at an end.
+std::vector<std::string> rangeEndNotes(const FluidConfig& config, const FluidConfig& in_force);
+
 // Copies the parameters named in `names` from `from` into `to` (explicit user overrides on
 // top of a scene's values). Unknown names are ignored.
 void overlayParams(const FluidConfig& from, const std::set<std::string>& names,
