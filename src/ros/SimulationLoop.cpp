@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <sstream>
+#include <stdexcept>
 #include <boost/make_shared.hpp>
 #include <rosgraph_msgs/Clock.h>
 
@@ -352,11 +354,44 @@ void FluidNode::seedAtCurrentPoses(const pbf::Scene& scene, pbf::PbfSolver& solv
   std::vector<Eigen::Vector3f> x, v;
   std::vector<std::uint32_t> block_of;
   scene.initialParticles(x, v, &block_of);
+  // A frame may have taken its block out of the container (a cup lifted away, turned over
+  // the floor): those particles are left out, with a warning. Clamped into the container
+  // they started piled on its walls and burst out at 18 m/s.
+  const Eigen::Isometry3f to_container = solver.containerPose().inverse();
+  const Eigen::AlignedBox3f& box = solver.container();
+  std::vector<std::size_t> outside(scene.fluid.size(), 0), total(scene.fluid.size(), 0);
+  std::size_t kept = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    if (const auto* pose = poseOf(scene.blockFrame(block_of[i]))) {
+    const std::uint32_t b = block_of[i];
+    if (const auto* pose = poseOf(scene.blockFrame(b))) {
       x[i] = *pose * x[i];
       v[i] = pose->linear() * v[i];
     }
+    ++total[b];
+    if (!box.contains(to_container * x[i])) {
+      ++outside[b];
+      continue;
+    }
+    x[kept] = x[i], v[kept] = v[i];
+    ++kept;
+  }
+  x.resize(kept), v.resize(kept);
+  auto whereIs = [&](std::size_t b) {
+    std::ostringstream where;
+    where << "fluid[" << b << "] in frame '" << scene.blockFrame(b) << "'";
+    if (const auto* pose = poseOf(scene.blockFrame(b)))
+      where << " (now at " << pose->translation().transpose() << " m)";
+    return where.str();
+  };
+  for (std::size_t b = 0; b < scene.fluid.size(); ++b)
+    if (outside[b] > 0 && kept > 0)
+      ROS_WARN("pbf_node: %s: %zu of its %zu particles would start outside the container; left out",
+               whereIs(b).c_str(), outside[b], total[b]);
+  if (kept == 0) {
+    std::size_t b = 0;
+    while (b + 1 < outside.size() && outside[b] == 0) ++b;
+    throw std::runtime_error("every particle would start outside the container where the fluid's "
+                             "frames are now (" + whereIs(b) + ")");
   }
   solver.setParticles(x, v);
 }
