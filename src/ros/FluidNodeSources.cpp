@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pbf_ros/ros/FluidNode.h"
+#include "pbf_ros/ros/WallThrottle.h"
 
 namespace pbf_ros {
 
@@ -65,7 +66,7 @@ void FluidNode::applySources(double dt) {
     if (attachments_->currentPose(frame, pose)) {
       sources_.setEmitterPose(k, pose);
     } else if (wallNow() - sources_since_wall_ > kEmitterFrameGrace) {
-      ROS_WARN_THROTTLE(10.0, "pbf_node: no tf for emitter %zu's frame '%s' (%s -> it); it stays "
+      PBF_WARN_THROTTLE(10.0, "pbf_node: no tf for emitter %zu's frame '%s' (%s -> it); it stays "
                         "where it was (shut, if its frame was never seen)",
                         k, frame.c_str(), domain_frame_.c_str());
     }
@@ -73,12 +74,12 @@ void FluidNode::applySources(double dt) {
   try {
     const pbf::FluidSources::StepResult r = sources_.afterStep(*solver_, dt, max_particles_);
     for (std::size_t k : r.held_by_limit) {
-      ROS_WARN_THROTTLE(5.0, "pbf_node: emitter %zu held: its layer would bring the fluid beyond "
+      PBF_WARN_THROTTLE(5.0, "pbf_node: emitter %zu held: its layer would bring the fluid beyond "
                         "~max_particles (%zu particles); it emits again once drains make room",
                         k, max_particles_);
     }
   } catch (const std::exception& e) {  // cannot happen with validated emitters; be sure
-    ROS_ERROR_THROTTLE(5.0, "pbf_node: sources and drains skipped this step: %s", e.what());
+    PBF_ERROR_THROTTLE(5.0, "pbf_node: sources and drains skipped this step: %s", e.what());
   }
 }
 

@@ -1,5 +1,6 @@
 #include "pbf_ros/ros/ObstacleMover.h"
 #include "pbf_ros/ros/SceneMarkers.h"
+#include "pbf_ros/ros/WallThrottle.h"
 
 #include <algorithm>
 #include <cmath>
@@ -170,14 +171,14 @@ void ObstacleMover::request(std::size_t index, std::uint64_t generation, const s
   Eigen::Isometry3f pose;
   std::string why;
   if (!poseFromMsg(msg, pose, why)) {
-    ROS_WARN_THROTTLE(2.0, "pbf_node: %s: refused %s; obstacle_%zu stays where it is", source.c_str(),
+    PBF_WARN_THROTTLE(2.0, "pbf_node: %s: refused %s; obstacle_%zu stays where it is", source.c_str(),
                       why.c_str(), index);
     return;
   }
   std::lock_guard<std::mutex> lock(mutex_);
   if (generation != generation_) return;  // meant for a scene that is gone
   if (std::find(free_.begin(), free_.end(), index) == free_.end()) {
-    ROS_WARN_THROTTLE(2.0, "pbf_node: %s: obstacle_%zu cannot be moved (it is not a free obstacle "
+    PBF_WARN_THROTTLE(2.0, "pbf_node: %s: obstacle_%zu cannot be moved (it is not a free obstacle "
                       "of this scene)", source.c_str(), index);
     return;
   }
@@ -203,7 +204,7 @@ bool ObstacleMover::apply(pbf::PbfSolver& solver, pbf::Scene& scene) {
     if (!target.frame.empty()) {
       Eigen::Isometry3f frame;
       if (!frame_pose_(target.frame, frame)) {
-        ROS_WARN_THROTTLE(2.0, "pbf_node: obstacle_%zu: no tf from %s to '%s'; the move is dropped", k,
+        PBF_WARN_THROTTLE(2.0, "pbf_node: obstacle_%zu: no tf from %s to '%s'; the move is dropped", k,
                           domain_frame_.c_str(), target.frame.c_str());
         arrived.push_back(k);
         continue;

@@ -15,6 +15,7 @@
 #include "pbf_ros/ros/SceneMarkers.h"
 #include "pbf_ros/ros/SolidWrenchTargets.h"
 #include "pbf_ros/ros/StatsConversion.h"
+#include "pbf_ros/ros/WallThrottle.h"
 #include "pbf_ros/core/SceneSetup.h"
 
 namespace pbf_ros {
@@ -87,20 +88,20 @@ void FluidNode::stepOnce() {
     const ros::Time time = publish_clock_ ? stamp() : ros::Time(0);
     const TfAttachments::Report tf = attachments_->update(scene_, *solver_, time, kMaxTfWait);
     if (!tf.missing.empty()) {
-      ROS_WARN_THROTTLE(10.0, "pbf_node: no tf for frame '%s' (%s -> it) yet; its solid stays put",
+      PBF_WARN_THROTTLE(10.0, "pbf_node: no tf for frame '%s' (%s -> it) yet; its solid stays put",
                         tf.missing.front().c_str(), domain_frame_.c_str());
     }
     if (!tf.non_finite.empty()) {
-      ROS_WARN_THROTTLE(10.0, "pbf_node: frame '%s' has a non-finite pose in tf (%s -> it); its solid "
+      PBF_WARN_THROTTLE(10.0, "pbf_node: frame '%s' has a non-finite pose in tf (%s -> it); its solid "
                         "keeps its previous pose", tf.non_finite.front().c_str(), domain_frame_.c_str());
     }
     if (!tf.behind.empty()) {
-      ROS_WARN_THROTTLE(10.0, "pbf_node: frame '%s' sent no pose for %.3g simulated s although its next "
+      PBF_WARN_THROTTLE(10.0, "pbf_node: frame '%s' sent no pose for %.3g simulated s although its next "
                         "one was due; its solid holds the latest (is its publisher on /clock, and alive?)",
                         tf.behind.front().first.c_str(), tf.behind.front().second);
     }
   } catch (const std::exception& e) {  // a non-finite pose: keep the previous one
-    ROS_WARN_THROTTLE(10.0, "pbf_node: ignoring an attached frame's pose: %s", e.what());
+    PBF_WARN_THROTTLE(10.0, "pbf_node: ignoring an attached frame's pose: %s", e.what());
   }
   // Obstacles a user drags (rviz, ~obstacle_pose/*) take their next bounded step.
   markers_stale_ = mover_->apply(*solver_, scene_) || markers_stale_;
@@ -129,24 +130,24 @@ void FluidNode::stepOnce() {
   }
   if (!paused_ && pacer_.factor() > 0.0 && pacer_.settled() &&
       pacer_.achievedFactor() < thresholds_.rtf_warn_ratio * pacer_.factor()) {
-    ROS_WARN_THROTTLE(10.0, "pbf_node: cannot keep up with real-time factor %g: achieving %.3g",
+    PBF_WARN_THROTTLE(10.0, "pbf_node: cannot keep up with real-time factor %g: achieving %.3g",
                       pacer_.factor(), pacer_.achievedFactor());
   }
   if (last_stats_.failed && last_stats_.dense_retries > 0) {
-    ROS_ERROR_THROTTLE(5.0, "pbf_node: step %llu given up after %d retries with half the time step, "
+    PBF_ERROR_THROTTLE(5.0, "pbf_node: step %llu given up after %d retries with half the time step, "
                        "%d of them because the particles are packed far denser than a fluid (more "
                        "than %zu neighbour pairs): the fluid has collapsed, most likely a time step "
                        "too long for the forces (time_step, gravity); state kept, ~reset starts again",
                        static_cast<unsigned long long>(solver_->stepCount()), last_stats_.nan_retries,
                        last_stats_.dense_retries, solver_->neighborPairBound());
   } else if (last_stats_.dense_retries > 0) {  // retried, then succeeded
-    ROS_WARN_THROTTLE(10.0, "pbf_node: step %llu retried with a shorter time step %d times because the "
+    PBF_WARN_THROTTLE(10.0, "pbf_node: step %llu retried with a shorter time step %d times because the "
                       "particles were packed far denser than a fluid (more than %zu neighbour pairs): "
                       "the time step is too long for the forces (time_step, gravity)",
                       static_cast<unsigned long long>(solver_->stepCount()), last_stats_.dense_retries,
                       solver_->neighborPairBound());
   } else if (last_stats_.failed) {
-    ROS_ERROR_THROTTLE(5.0, "pbf_node: step %llu given up after %d NaN retries; state kept",
+    PBF_ERROR_THROTTLE(5.0, "pbf_node: step %llu given up after %d NaN retries; state kept",
                        static_cast<unsigned long long>(solver_->stepCount()),
                        last_stats_.nan_retries);
   }
@@ -205,7 +206,7 @@ void FluidNode::publishCloud(bool force) {
   const std::size_t dropped = fillParticleCloud(solver_->positions(), solver_->velocities(),
                                                 solver_->densities(), solver_->ids(), *cloud_);
   if (dropped > 0) {
-    ROS_ERROR_THROTTLE(5.0, "pbf_node: %zu particles with non-finite values left out of ~particles",
+    PBF_ERROR_THROTTLE(5.0, "pbf_node: %zu particles with non-finite values left out of ~particles",
                        dropped);
   }
   particles_pub_.publish(boost::shared_ptr<const sensor_msgs::PointCloud2>(cloud_));

@@ -17,6 +17,7 @@
 #include "pbf_ros/ros/CameraInfoConversion.h"
 #include "pbf_ros/ros/FluidNode.h"
 #include "pbf_ros/ros/SurfaceImageConversion.h"
+#include "pbf_ros/ros/WallThrottle.h"
 
 namespace pbf_ros {
 
@@ -262,7 +263,7 @@ void SurfaceRenderThread::renderAndPublish(pbf::FluidRenderer& renderer,
                         ? &snapshot.neighbor_counts
                         : nullptr);
   } catch (const std::exception& e) {
-    ROS_ERROR_THROTTLE(5.0, "pbf_node: surface frame failed: %s", e.what());
+    PBF_ERROR_THROTTLE(5.0, "pbf_node: surface frame failed: %s", e.what());
     return;
   }
 

@@ -1,6 +1,7 @@
-// TopicRateDiagnostic across jumps of the ROS clock: a /clock jump beyond 2^31 s made
-// FrequencyStatus's ros::Time subtraction throw out of the diagnostics timer and took the node
-// down; a jump either way now restarts the measurement.
+// The node's clocks under a hostile ROS clock. TopicRateDiagnostic across its jumps: a /clock
+// jump beyond 2^31 s made FrequencyStatus's ros::Time subtraction throw out of the diagnostics
+// timer and took the node down; a jump either way now restarts the measurement. The log
+// throttle measures wall time: a /clock stepping back restarted rosconsole's every period.
 //
 // This file sets simulated time for the whole test process (ros::Time::setNow), so it is the
 // last file of test_ros_units (test/ros_tests.cmake).
@@ -10,6 +11,7 @@
 #include <ros/time.h>
 
 #include "pbf_ros/ros/TopicRateDiagnostic.h"
+#include "pbf_ros/ros/WallThrottle.h"
 
 namespace {
 
@@ -51,6 +53,23 @@ TEST(TopicRateDiagnostic, AJumpOfTheRosClockEitherWayRestartsTheMeasurement) {
   DiagnosticStatus silent;
   for (int k = 0; k < 5; ++k) silent = reportAt(rate, t += 1.0, 0);
   EXPECT_EQ(silent.level, DiagnosticStatus::ERROR);
+}
+
+TEST(WallThrottle, AdmitsOncePerPeriodOfWallTimeWhateverTheRosClockDoes) {
+  ros::Time::init();
+  std::atomic<std::int64_t> last{std::numeric_limits<std::int64_t>::min()};
+  constexpr std::int64_t kSecond = 1000000000;
+  EXPECT_TRUE(pbf_ros::wallThrottleAdmits(last, 10.0, 5 * kSecond));
+  for (double t : {100.0, 50.0, 1.0e9, 3.0})  {  // the ROS clock back and forth: not read
+    ros::Time::setNow(ros::Time(t));
+    EXPECT_FALSE(pbf_ros::wallThrottleAdmits(last, 10.0, 9 * kSecond));
+  }
+  EXPECT_TRUE(pbf_ros::wallThrottleAdmits(last, 10.0, 15 * kSecond));
+  EXPECT_FALSE(pbf_ros::wallThrottleAdmits(last, 10.0, 24 * kSecond));
+  // Its default is the steady clock: a first call is admitted, an immediate second one not.
+  std::atomic<std::int64_t> fresh{std::numeric_limits<std::int64_t>::min()};
+  EXPECT_TRUE(pbf_ros::wallThrottleAdmits(fresh, 60.0));
+  EXPECT_FALSE(pbf_ros::wallThrottleAdmits(fresh, 60.0));
 }
 
 }  // namespace
