@@ -53,12 +53,15 @@ ros::Time FluidNode::stamp() const {
 }
 
 void FluidNode::anchorStamps() {
-  stamp_anchor_ = std::max(0.0, ros::Time::now().toSec() - sim_clock_);
+  const ros::Time now = ros::Time::now();
+  anchor_awaits_clock_ = now.isZero();  // use_sim_time, and no /clock yet
+  stamp_anchor_ = std::max(0.0, now.toSec() - sim_clock_);
 }
 
 void FluidNode::runSimulation() {
   while (running_ && ros::ok()) {
     tasks_.runAll();
+    if (anchor_awaits_clock_ && !publish_clock_ && !ros::Time::now().isZero()) anchorStamps();
     const double wall = wallNow();
     if (!paused_ && pacer_.shouldStep(wall, sim_clock_)) {
       stepOnce();

@@ -197,6 +197,9 @@ class FluidNode {
   double next_cloud_wall_ = 0.0, next_stats_wall_ = 0.0, next_snapshot_wall_ = 0.0;
   double last_clock_wall_ = 0.0;
   double stamp_anchor_ = 0.0;          // ROS time [s] of sim_clock_ 0 (without /clock)
+  // The anchor was taken on simulated time before any /clock came (ROS time 0): it is taken
+  // again once one does, or stamps would count from 0 while /clock says otherwise.
+  bool anchor_awaits_clock_ = false;
   std::uint64_t state_version_ = 0;    // changes with every step and rebuild
   std::uint64_t cloud_version_ = ~std::uint64_t(0);  // the state last published
   std::atomic<bool> cloud_wanted_{false};  // a new subscriber wants the current state
