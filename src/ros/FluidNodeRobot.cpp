@@ -27,6 +27,9 @@ std::vector<RobotLinkSolids> FluidNode::addRobotSolids(pbf::Scene& scene) {
     if (load.found)
       ROS_WARN("pbf_node: robot description %s gives no solids; the fluid runs without the robot",
                load.param.c_str());
+    else if (!robot_links_.empty())  // silent only for a scene that never had a robot
+      ROS_WARN("pbf_node: robot description %s is gone; the fluid is rebuilt without the robot",
+               load.param.c_str());
     return links;
   }
 

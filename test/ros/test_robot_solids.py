@@ -184,6 +184,17 @@ class RobotSolidsTest(unittest.TestCase):
             timeout=20.0, condition=lambda m: any(p.type == Marker.CUBE for p in probe_markers(m)))
         self.assertEqual([m.type for m in probe_markers(markers)], [Marker.CUBE])
 
+        # The description deleted, then ~reset: the robot goes, and the node says so (it went
+        # in silence, as for a scene that never had one).
+        rospy.delete_param('/robot_description')
+        try:
+            answer = reset()
+            self.assertTrue(answer.success, answer.message)
+            log.wait_for(Log.WARN, 'robot description', 'is gone')
+            marker_topic.current_or_next(timeout=10.0, condition=lambda m: not probe_markers(m))
+        finally:
+            rospy.set_param('/robot_description', urdf)
+
 
 if __name__ == '__main__':
     rospy.init_node('test_robot_solids')
