@@ -2,6 +2,7 @@
 // the change to the simulation thread (applied between steps). The callback waits for the
 // simulation thread, so when the reconfigure call returns the change is in force.
 
+#include "pbf_ros/ros/EchoedText.h"
 #include "pbf_ros/ros/FluidNode.h"
 #include "pbf_ros/ros/ParamsConversion.h"
 #include "pbf_ros/ros/ReconfigureLevels.h"
@@ -50,8 +51,8 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
       for (const std::string& note : sanitizeConfig(fresh, applied_config_)) refuse(note);
       config = fresh;
     } catch (const std::exception& e) {  // any failure, foreseen or not, is a refusal
-      refuse("scene '" + config.scene + "' refused (" + e.what() + "); '" +
-             applied_config_.scene + "' keeps running");
+      refuse("scene '" + echoed(config.scene) + "' refused (" + echoed(e.what(), 4 * kEchoedChars) +
+             "); '" + echoed(applied_config_.scene) + "' keeps running");
       config = applied_config_;  // the server then shows what runs
       return;
     }
@@ -87,7 +88,10 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
     std::string why = probe.validate();
     if (why.empty()) why = probe.checkParticleCount(max_particles_);
     if (!why.empty()) {
-      refuse("reconfigure refused: " + why + "; '" + applied_config_.scene + "' keeps running");
+      const std::string asked = config.scene != applied_config_.scene
+                                    ? "scene '" + echoed(config.scene) + "' refused: "
+                                    : std::string("reconfigure refused: ");
+      refuse(asked + why + "; '" + echoed(applied_config_.scene) + "' keeps running");
       config = applied_config_;
       return;
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "pbf_ros/ros/EchoedText.h"
 #include "pbf_ros/ros/FluidNode.h"
 #include "pbf_ros/ros/WallThrottle.h"
 
@@ -44,7 +45,7 @@ std::string blockFromRequest(const Emit::Request& req, pbf::FluidBlock& block) {
       err = m.str();
     }
   } else {
-    return "field 'shape': expected \"box\" or \"sphere\", got \"" + req.shape + "\"";
+    return "field 'shape': expected \"box\" or \"sphere\", got \"" + echoed(req.shape) + "\"";
   }
   if (!err.empty()) return err;
   const std::string invalid = pbf::validateBlock(block);
@@ -97,7 +98,7 @@ bool FluidNode::onEmitService(Emit::Request& req, Emit::Response& res) {
     if (!frame.empty() && frame != domain_frame_) {
       if (!attachments_) attachments_ = std::make_unique<TfAttachments>(domain_frame_);
       if (!attachments_->currentPose(frame, pose))
-        return "field 'frame_id': no tf from " + domain_frame_ + " to '" + frame + "'";
+        return "field 'frame_id': no tf from " + domain_frame_ + " to '" + echoed(frame) + "'";
     }
     try {
       const pbf::SiteCount c = sources_.emitBlock(*solver_, block, pose, max_particles_);

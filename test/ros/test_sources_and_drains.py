@@ -81,6 +81,12 @@ class SourcesAndDrainsTest(unittest.TestCase):
         refused(box_request((5.0, 5.0, 5.0), (5.1, 5.1, 5.1)), ['no free lattice site', 'outside'])
         refused(box_request((0.2, 0.1, 0.2), (0.3, 0.2, 0.3), frame_id='no_such_frame'),
                 ["'frame_id'", 'no_such_frame'])
+        # Echoed text is cut: a 1 MB shape came back as a 1 MB reply (and log line).
+        response = refused(EmitRequest(shape='x' * 1000000), ['shape', '(1000000 characters)'])
+        self.assertLess(len(response.message), 1000)
+        response = refused(box_request((0.2, 0.1, 0.2), (0.3, 0.2, 0.3), frame_id='f' * 100000),
+                           ["'frame_id'", '(100000 characters)'])
+        self.assertLess(len(response.message), 1000)
 
         # A 12 x 12 x 12 cm block above the pool: 4 x 4 x 4 sites, all free.
         response = self.emit(box_request((0.21, 0.09, 0.27), (0.33, 0.21, 0.39)))
