@@ -16,7 +16,8 @@ namespace {
 constexpr double kEmitterFrameGrace = 3.0;
 
 // A request's double as the solver's float: finite both ways (1e39 is a finite double but
-// an infinite float), or the name of the field that is not.
+// an infinite float), or the name of the field that is not. Messages print a double whole
+// (17 digits): 5e-324 read "0" and a box 1e-12 wide had equal corners at 6 digits.
 bool toFloat(double value, float& out) {
   out = static_cast<float>(value);
   return std::isfinite(value) && std::isfinite(out);
@@ -27,7 +28,9 @@ std::string blockFromRequest(const Emit::Request& req, pbf::FluidBlock& block) {
   auto vec = [](const char* name, double x, double y, double z, Eigen::Vector3f& out) -> std::string {
     if (toFloat(x, out.x()) && toFloat(y, out.y()) && toFloat(z, out.z())) return "";
     std::ostringstream m;
-    m << "field '" << name << "': expected finite numbers, got [" << x << ", " << y << ", " << z << "]";
+    m.precision(17);
+    m << "field '" << name << "': expected numbers a float holds (finite, |x| < 3.4e38), got [" << x
+      << ", " << y << ", " << z << "]";
     return m.str();
   };
   std::string err = vec("velocity", req.velocity.x, req.velocity.y, req.velocity.z, block.velocity);
@@ -41,7 +44,8 @@ std::string blockFromRequest(const Emit::Request& req, pbf::FluidBlock& block) {
     err = vec("center", req.center.x, req.center.y, req.center.z, block.center);
     if (err.empty() && !toFloat(req.radius, block.radius)) {
       std::ostringstream m;
-      m << "field 'radius': expected a finite number > 0 [m], got " << req.radius;
+      m.precision(17);
+      m << "field 'radius': expected a number > 0 [m] a float holds (|r| < 3.4e38), got " << req.radius;
       err = m.str();
     }
   } else {
