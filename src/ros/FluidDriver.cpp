@@ -18,6 +18,9 @@ FluidDriver::FluidDriver(ros::NodeHandle nh, ros::NodeHandle private_nh,
 FluidDriver::~FluidDriver() {
   // Reconfigure must not reach the render thread once it is going away.
   node_.setRenderSettingsListener(nullptr);
+  // The solver first: the render thread runs at idle priority and, joined while the solver
+  // still held both cores, took 0.5-5 s to finish its frame (a nodelet's unload).
+  node_.stopSimulation();
 }
 
 }  // namespace pbf_ros

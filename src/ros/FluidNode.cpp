@@ -109,7 +109,9 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   reconfigure_live_ = true;
 }
 
-FluidNode::~FluidNode() {
+FluidNode::~FluidNode() { stopSimulation(); }
+
+void FluidNode::stopSimulation() {
   running_ = false;
   tasks_.wake();
   if (sim_thread_.joinable()) sim_thread_.join();

@@ -63,6 +63,10 @@ class FluidNode {
   // cannot start.
   FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
   ~FluidNode();  // stops and joins the simulation thread
+  // Stops and joins the simulation thread now (idempotent; the destructor calls it): what
+  // goes away with the node first, such as the idle-priority render thread, then gets the
+  // CPU the solver held. Services and reconfigure answer with an error after it.
+  void stopSimulation();
   FluidNode(const FluidNode&) = delete;
   FluidNode& operator=(const FluidNode&) = delete;
 
