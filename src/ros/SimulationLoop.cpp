@@ -99,8 +99,8 @@ void FluidNode::stepOnce() {
                         "keeps its previous pose", tf.non_finite.front().c_str(), domain_frame_.c_str());
     }
     if (!tf.behind.empty()) {
-      PBF_WARN_THROTTLE(10.0, "pbf_node: frame '%s' sent no pose for %.3g simulated s although its next "
-                        "one was due; its solid holds the latest (is its publisher on /clock, and alive?)",
+      PBF_WARN_THROTTLE(10.0, "pbf_node: frame '%s': its latest pose is %.3g simulated s old and its next "
+                        "is overdue; its solid holds the latest (is its publisher on /clock, and alive?)",
                         tf.behind.front().first.c_str(), tf.behind.front().second);
     }
   } catch (const std::exception& e) {  // a non-finite pose: keep the previous one

@@ -9,6 +9,8 @@ namespace pbf_ros {
 namespace {
 // Missing frames are not reported during this long after a (re)start [wall s].
 constexpr double kMissingGrace = 3.0;
+// A publisher whose next pose is later than this is reported as behind [simulated s].
+constexpr double kOverdue = 0.25;
 }  // namespace
 
 TfAttachments::TfAttachments(std::string domain_frame)
@@ -65,11 +67,12 @@ TfAttachments::Lookup TfAttachments::lookup(const std::string& frame, const ros:
           ros::WallDuration(0.0005).sleep();
           ready = buffer_->canTransform(domain_frame_, frame, time);
         }
-        if (!ready) {
-          clock.waited_in_vain = latest;  // not again until it sends a newer pose
-          if (behind != nullptr) *behind = now_s - latest_s;
-        }
+        if (!ready) clock.waited_in_vain = latest;  // not again until it sends a newer pose
       }
+      // Overdue by more than scheduling jitter (a 60 Hz publisher answering a /clock a few ms
+      // late): its solid holds a pose that is getting old.
+      const double overdue = now_s - latest_s - (interval_known ? latest_s - previous_s : 0.0);
+      if (!ready && behind != nullptr && overdue > kOverdue) *behind = now_s - latest_s;
       if (ready) t = buffer_->lookupTransform(domain_frame_, frame, time);
     }
   } catch (const tf2::TransformException&) {

@@ -110,17 +110,23 @@ TEST(TfAttachments, WaitsOnlyForAPoseThatIsDueAndOncePerFrame) {
   ASSERT_EQ(report.behind.size(), 1u);
   EXPECT_EQ(report.behind[0].first, "link");
   EXPECT_NEAR(report.behind[0].second, 0.5, 1e-9);
-  // Waited for in vain since its latest pose: not again.
+  // Waited for in vain since its latest pose: not again, and still reported behind.
   EXPECT_LT(wallSecondsOf([&] { report = tf.update(scene, solver, ros::Time(1.6), kWait); }), 0.5 * kWait);
-  EXPECT_TRUE(report.behind.empty());
+  ASSERT_EQ(report.behind.size(), 1u);
+  EXPECT_NEAR(report.behind[0].second, 0.6, 1e-9);
 
-  // A newer pose: its interval is 1 s, so at 2.5 s the next is not due yet (no wait), at 3 s it is.
+  // A newer pose: its interval is 1 s, so at 2.5 s the next is not due yet (no wait, not
+  // behind), at 3.1 s it is (a wait), and overdue by less than 0.25 s (not behind: jitter),
+  // at 3.5 s by more (behind).
   ASSERT_TRUE(buffer->setTransform(linkAt(2.0, 0.3), "test"));
   EXPECT_LT(wallSecondsOf([&] { report = tf.update(scene, solver, ros::Time(2.5), kWait); }), 0.5 * kWait);
   EXPECT_TRUE(report.behind.empty());
   EXPECT_NEAR(solver.obstacles()[4].pose.translation().x(), 0.3f, 1e-5f);  // the latest pose
-  EXPECT_GE(wallSecondsOf([&] { report = tf.update(scene, solver, ros::Time(3.0), kWait); }), 0.9 * kWait);
+  EXPECT_GE(wallSecondsOf([&] { report = tf.update(scene, solver, ros::Time(3.1), kWait); }), 0.9 * kWait);
+  EXPECT_TRUE(report.behind.empty());
+  report = tf.update(scene, solver, ros::Time(3.5), kWait);
   ASSERT_EQ(report.behind.size(), 1u);
+  EXPECT_NEAR(report.behind[0].second, 1.5, 1e-9);
 
   // A pose tf holds but that is not finite (tf2 takes infinities): named, the solid stays.
   geometry_msgs::TransformStamped far = linkAt(4.0, std::numeric_limits<double>::infinity());

@@ -32,8 +32,9 @@ class TfAttachments {
   struct Report {
     std::vector<std::string> missing;     // tf does not know them (named after a grace period)
     std::vector<std::string> non_finite;  // tf has them, with a pose that is not finite
-    // Waited for in vain: the publisher's next pose was due by the step's time and did not
-    // come within max_wait; the solid holds the latest pose, this many simulated s old.
+    // Behind: the publisher's next pose (its latest stamp plus its interval) is more than
+    // 0.25 simulated s overdue at the step's time; the solid holds the latest pose, this
+    // many simulated s old.
     std::vector<std::pair<std::string, double>> behind;
   };
 
