@@ -23,7 +23,7 @@ bool finite(float x) { return std::isfinite(x); }
 
 std::string describe(const Eigen::Vector3f& v) {
   std::ostringstream s;
-  s.precision(9);  // a float whole: two corners 1e-12 apart must not print alike
+  s.precision(9);  // a float whole: at 6 digits 0.1 and 0.1000001 printed alike
   s << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
   return s.str();
 }

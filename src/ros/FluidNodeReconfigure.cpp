@@ -23,7 +23,9 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
     return;
   }
 
-  for (const std::string& note : rangeEndNotes(config, applied_config_)) ROS_WARN("pbf_node: %s", note.c_str());
+  // Information, not a warning: a slider dragged to its end, or 0 to switch a term off, is a
+  // value at an end too.
+  for (const std::string& note : rangeEndNotes(config, applied_config_)) ROS_INFO("pbf_node: %s", note.c_str());
   for (const std::string& note : sanitizeConfig(config, applied_config_)) refuse(note);
 
   // What the user has set (start-up parameters, earlier requests, this request) stays set

@@ -17,7 +17,7 @@ constexpr double kEmitterFrameGrace = 3.0;
 
 // A request's double as the solver's float: finite both ways (1e39 is a finite double but
 // an infinite float), or the name of the field that is not. Messages print a double whole
-// (17 digits): 5e-324 read "0" and a box 1e-12 wide had equal corners at 6 digits.
+// (17 digits): a radius of 5e-324 read "got 0".
 bool toFloat(double value, float& out) {
   out = static_cast<float>(value);
   return std::isfinite(value) && std::isfinite(out);
