@@ -118,17 +118,31 @@ double RigidBody::kineticEnergy() const {
   return 0.5 * mass_ * v_.squaredNorm() + 0.5 * w_.dot(r * inertia_body_ * r.transpose() * w_);
 }
 
-void RigidBody::step(const Wrench& fluid, const Eigen::Vector3d& gravity, double dt) {
+bool RigidBody::step(const Wrench& fluid, const Eigen::Vector3d& gravity, double dt, double max_speed) {
   const Eigen::Matrix3d r = q_.toRotationMatrix();
   const Eigen::Matrix3d inertia = r * inertia_body_ * r.transpose();
   const Eigen::Matrix3d inverse = r * inverse_inertia_body_ * r.transpose();
-  v_ += dt * (gravity + fluid.force / mass_);
-  w_ += dt * (inverse * (fluid.torque - w_.cross(inertia * w_)));
-  x_ += dt * v_;
-  const double angle = w_.norm() * dt;
-  if (angle > 0.0) q_ = Eigen::Quaterniond(Eigen::AngleAxisd(angle, w_.normalized())) * q_;
-  q_.normalize();
-  shape_.pose = Eigen::Translation3f(x_.cast<float>()) * q_.cast<float>();
+  Eigen::Vector3d v = v_ + dt * (gravity + fluid.force / mass_);
+  Eigen::Vector3d w = w_ + dt * (inverse * (fluid.torque - w_.cross(inertia * w_)));
+  if (max_speed > 0.0) {
+    // The centre, and the rim of the body's bounding sphere, at most max_speed each.
+    if (v.norm() > max_speed) v *= max_speed / v.norm();
+    const double rim = std::max(double(shape_.boundingRadius()), 1e-6);
+    if (w.norm() * rim > max_speed) w *= max_speed / (w.norm() * rim);
+  }
+  const Eigen::Vector3d x = x_ + dt * v;
+  Eigen::Quaterniond q = q_;
+  const double angle = w.norm() * dt;
+  if (angle > 0.0) q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, w.normalized())) * q;
+  q.normalize();
+  const Eigen::Isometry3f pose = Eigen::Translation3f(x.cast<float>()) * q.cast<float>();
+  if (!(v.allFinite() && w.allFinite() && pose.matrix().allFinite())) {
+    v_.setZero(), w_.setZero();  // a force that overflows: stay, at rest
+    return false;
+  }
+  v_ = v, w_ = w, x_ = x, q_ = q;
+  shape_.pose = pose;
+  return true;
 }
 
 void RigidBody::collide(const Eigen::AlignedBox3f& box_f, const Eigen::Isometry3f& container_pose) {

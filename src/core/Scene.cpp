@@ -585,6 +585,15 @@ std::string Scene::validate() const {
   for (const FloatingBodySpec& f : floating) {
     if (f.obstacle >= obstacles.size()) return "a floating body names obstacle " + std::to_string(f.obstacle) + ", which does not exist";
     if (!(f.mass > 0.0 && std::isfinite(f.mass))) return "floating obstacle " + std::to_string(f.obstacle) + ": mass must be > 0";
+    const double volume = solidVolume(obstacles[f.obstacle]);
+    if (volume > 0.0 && f.mass / volume < kLightestFloatingDensityRatio * solver.rest_density) {
+      std::ostringstream e;
+      e << "floating obstacle " << f.obstacle << ": density " << f.mass / volume
+        << " kg/m^3 is below " << 100.0 * kLightestFloatingDensityRatio << " % of the fluid's rest density ("
+        << solver.rest_density << " kg/m^3); the fluid's explicit push is not stable on a body that light "
+           "(README, floating bodies)";
+      return e.str();
+    }
   }
   const float d = solver.particle_spacing;
   const double cells = (container.sizes() / d).cast<double>().prod();

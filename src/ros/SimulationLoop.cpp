@@ -116,7 +116,11 @@ void FluidNode::stepOnce() {
   last_stats_ = solver_->step();
   if (!last_stats_.failed) {
     wrench_pubs_->accumulate(scene_, *solver_, last_stats_.dt);  // at the poses of the step
-    floating_.afterStep(*solver_, last_stats_.dt);               // poses for the next one
+    // Poses for the next step.
+    if (const std::size_t stuck = floating_.afterStep(*solver_, last_stats_.dt)) {
+      PBF_WARN_THROTTLE(10.0, "pbf_node: %zu floating bodies held at rest: the fluid's push would have "
+                        "moved them beyond any finite pose", stuck);
+    }
     publishFloatingPoses();
     applySources(last_stats_.dt);  // the particle count may change here, between steps
   }

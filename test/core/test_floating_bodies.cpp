@@ -186,4 +186,39 @@ TEST(FloatingBodies, RigidBodyFallsOntoTheFloorTipsFlatAndRests) {
   EXPECT_THROW(pbf::RigidBody(box, 1.0, Eigen::Matrix3d::Zero()), std::invalid_argument);
 }
 
+// A body far lighter than the water (a helper probe's 1e-6 kg/m^3) took the node down: its
+// pose overflowed to infinity and the solver refused it (std::invalid_argument). Scenes now
+// refuse such bodies, and a body whose step would overflow stays where it was, at rest; its
+// speed, and its rim's, keep to the fluid's cap.
+TEST(FloatingBodies, ALightBodyIsRefusedAndNoStepLeavesAPoseThatIsNotFinite) {
+  pbf::Obstacle ball;
+  ball.shape = pbf::Obstacle::Shape::Sphere;
+  ball.radius = 0.05f;
+  ball.pose = Eigen::Translation3f(0.2f, 0.2f, 0.1f) * Eigen::Quaternionf::Identity();
+  pbf::Scene scene = tank(0.4f, 0.1f, ball);
+  const double volume = pbf::solidVolume(ball);
+  for (double density : {1e-6, 1.0, 19.0}) {
+    scene.floating = {{0, density * volume, pbf::solidInertia(ball, density * volume)}};
+    EXPECT_NE(scene.validate().find("below 2 % of the fluid's rest density"), std::string::npos) << density;
+  }
+  scene.floating = {{0, 20.0 * volume, pbf::solidInertia(ball, 20.0 * volume)}};
+  EXPECT_EQ(scene.validate(), "");
+
+  pbf::RigidBody light(ball, 1e-12, pbf::solidInertia(ball, 1e-12));
+  pbf::Wrench push;
+  push.force = Eigen::Vector3d(1e300, 0.0, 0.0);
+  push.torque = Eigen::Vector3d(0.0, 0.0, 1e300);
+  EXPECT_FALSE(light.step(push, Eigen::Vector3d(0, 0, -9.81), 1e-3));
+  EXPECT_TRUE(light.shape().pose.matrix().allFinite());
+  EXPECT_NEAR(light.shape().pose.translation().x(), 0.2f, 1e-6f);
+  EXPECT_EQ(light.linearVelocity().norm(), 0.0);
+
+  pbf::RigidBody capped(ball, 1.0, pbf::solidInertia(ball, 1.0));
+  push.force = Eigen::Vector3d(1e6, 0.0, 0.0);
+  push.torque = Eigen::Vector3d(0.0, 0.0, 1e6);
+  EXPECT_TRUE(capped.step(push, Eigen::Vector3d::Zero(), 1e-3, 5.0));
+  EXPECT_NEAR(capped.linearVelocity().norm(), 5.0, 1e-9);
+  EXPECT_NEAR(capped.angularVelocity().norm() * ball.boundingRadius(), 5.0, 1e-6);
+}
+
 }  // namespace

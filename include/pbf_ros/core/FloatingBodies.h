@@ -26,8 +26,10 @@ class FloatingBodies {
   void prepare(PbfSolver& solver) const {
     if (!bodies_.empty()) solver.setWrenchTracking(true);
   }
-  // After a step of `dt` (nothing happens after a failed step).
-  void afterStep(PbfSolver& solver, double dt);
+  // After a step of `dt` (nothing happens after a failed step). Bodies move at most at the
+  // solver's speed cap (PbfSolver::maxSpeedCap). Returns how many bodies could not move
+  // because their step overflowed (they stay, at rest; RigidBody::step).
+  std::size_t afterStep(PbfSolver& solver, double dt);
 
  private:
   std::vector<std::pair<std::size_t, RigidBody>> bodies_;

@@ -117,6 +117,9 @@ class PbfSolver {
   // water's density, never below 2^22 (16 MiB) nor above NeighborGrid::kMaxPairs. A step
   // whose search finds more is rejected (StepStats::dense_retries).
   std::size_t neighborPairBound() const;
+  // The speed no particle exceeds [m/s]: max_speed_factor times the free-fall speed across
+  // the container (0 = no cap). Floating bodies keep to it too (FloatingBodies).
+  float maxSpeedCap() const;
 
  private:
   bool attemptStep(float dt, StepStats& stats);
@@ -198,7 +201,6 @@ class PbfSolver {
   bool stateIsFinite() const;
   void gatherStats(StepStats& stats) const;
   void reorder(const std::vector<std::uint32_t>& order);
-  float maxSpeedCap() const;
 
   SolverParams params_;
   // params_.overlapRelaxation(), taken once per setParams instead of once per iteration (it

@@ -4,7 +4,12 @@
 // just taken) and inelastic contact with the container walls; its pose is the obstacle's.
 // Two-way coupling is explicit (the fluid's push of one step moves the body for the next),
 // which is stable for bodies not much lighter than the fluid they displace (the added mass
-// of the water around a body is of the order of its displaced mass).
+// of the water around a body is of the order of its displaced mass). Scenes refuse bodies
+// lighter than kLightestFloatingDensityRatio of the fluid's rest density; below it a body
+// is not stable (session 38, `pbf_run` on the floating_bodies scene at d = 0.02 and
+// 0.0125 m, 2 s: at 10 and 20 kg/m^3 the raft and the buoy floated; at 5 kg/m^3 the buoy
+// leapt out of the water to the lid, at 1 kg/m^3 it reached 2 000 m/s, and at 1e-6 its pose
+// overflowed to infinity).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -14,6 +19,9 @@
 #include "pbf_ros/core/SolidWrench.h"
 
 namespace pbf {
+
+// A floating body's density at least this fraction of the fluid's rest density (Scene).
+constexpr double kLightestFloatingDensityRatio = 0.02;
 
 // Volume of an obstacle's solid [m^3] (a mesh: the volume its triangles enclose).
 double solidVolume(const Obstacle& o);
@@ -29,8 +37,11 @@ class RigidBody {
   RigidBody(const Obstacle& shape, double mass, const Eigen::Matrix3d& inertia);
 
   // One step of dt: gravity and `fluid` (force in fluid_domain, torque about the body's
-  // origin) change the velocities (semi-implicit Euler), then the pose follows them.
-  void step(const Wrench& fluid, const Eigen::Vector3d& gravity, double dt);
+  // origin) change the velocities (semi-implicit Euler), then the pose follows them. The
+  // speed of every point of the body is capped at `max_speed` [m/s] (0 = no cap), as the
+  // fluid's is (SolverParams::max_speed_factor). A step that would leave the state non-finite
+  // is not taken: the body stays where it was, at rest, and step() returns false.
+  bool step(const Wrench& fluid, const Eigen::Vector3d& gravity, double dt, double max_speed = 0.0);
   // Keeps the body inside the container (`box` in its frame at `container_pose`): points of
   // the body beyond a wall are moved back and their velocity into the wall is removed
   // (an inelastic impulse at the point, so a resting body stays and a sliding one turns).
