@@ -65,6 +65,11 @@ std::int64_t cellKey(const Eigen::Vector3i& c) {
 
 }  // namespace
 
+double emitterSpeed(const Emitter& e, float d) {
+  if (e.speed > 0.0f) return e.speed;
+  return double(e.rate) / (double(discSites(e.radius, d).size()) * d * d);
+}
+
 std::string Emitter::validate() const {
   std::ostringstream e;
   if (!position.allFinite()) return "position: expected 3 finite numbers, got " + describe(position);
@@ -291,22 +296,30 @@ std::size_t FluidSources::emitLayers(PbfSolver& solver, std::size_t k, double dt
   const double open = std::clamp(t1 - std::max(t0, double(e.start)), 0.0, dt);
   if (open <= 0.0) return 0;
   const std::vector<Eigen::Vector2f> disc = discSites(e.radius, d);
-  const double speed = std::min<double>(
-      kMaxEmitterSpeed, e.speed > 0.0f ? double(e.speed) : double(e.rate) / (double(disc.size()) * d * d));
+  // Scene::validate bounds a rate's speed too; a direct caller's is capped here.
+  const double speed = std::min<double>(kMaxEmitterSpeed, emitterSpeed(e, d));
   s.travel += speed * open;
+  // More layers due than a step may add (a jet faster than kMaxLayersPerStep spacings per
+  // step): the ones that left first, farthest from the nozzle, are dropped and the newest
+  // kept, so the jet starts at the nozzle and its particles' speed shortens the next
+  // adaptive step (CFL). Keeping the farthest put a 1000 m/s jet's layers metres ahead,
+  // outside the container, at every step: it never emitted.
+  const double due = std::floor(s.travel / d);
+  if (due > kMaxLayersPerStep) {
+    s.travel -= (due - kMaxLayersPerStep) * d;
+    result.too_fast.push_back(k);
+  }
   Eigen::Vector3f u, w;
   planeBasis(e.direction, u, w);
   std::vector<Eigen::Vector3f> sites;
-  int layers = 0;
   // Each layer is placed where it would be had it left the nozzle exactly when the layer
   // before it had gone d: the jet stays a lattice of spacing d along its direction.
-  while (s.travel >= d && layers < kMaxLayersPerStep) {
+  for (int layers = 0; s.travel >= d && layers < kMaxLayersPerStep; ++layers) {
     s.travel -= d;
-    ++layers;
     const Eigen::Vector3f centre = e.position + e.direction * static_cast<float>(s.travel);
     for (const Eigen::Vector2f& q : disc) sites.push_back(e.pose * (centre + q.x() * u + q.y() * w));
   }
-  if (layers == kMaxLayersPerStep) s.travel = std::min(s.travel, double(d));
+  s.travel = std::min(s.travel, double(d));
   if (sites.empty()) return 0;
   keepFreeSites(solver, sites);
   if (volume_budget >= 0.0)

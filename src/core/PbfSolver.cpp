@@ -128,10 +128,8 @@ void PbfSolver::setParticles(const std::vector<Eigen::Vector3f>& positions,
 }
 
 float PbfSolver::maxSpeedCap() const {
-  if (params_.max_speed_factor <= 0.0f || container_.isEmpty()) return 0.0f;
-  const float g = std::max(params_.gravity.norm(), 9.81f);
-  const float l = container_.sizes().maxCoeff();
-  return params_.max_speed_factor * std::sqrt(2.0f * g * l);
+  if (container_.isEmpty()) return 0.0f;
+  return params_.speedCap(container_.sizes().maxCoeff());
 }
 
 float PbfSolver::nextTimeStep() const {

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "pbf_ros/core/FluidSources.h"
 #include "pbf_ros/core/RigidBody.h"
 
 namespace pbf {
@@ -610,6 +611,20 @@ std::string Scene::validate() const {
     if (emitters[i].radius > kMaxEmitterRadiusInSpacings * d) {
       err << "emitters[" << i << "].radius " << emitters[i].radius << " m is more than "
           << kMaxEmitterRadiusInSpacings << " particle spacings (" << d << " m)";
+      return err.str();
+    }
+    // A rate is a speed through the nozzle's sites, bounded as a speed is (it was capped at
+    // 1000 m/s in silence); and no jet faster than the fluid may go (the speed cap), which
+    // would slow its particles at once.
+    const double jet = emitterSpeed(emitters[i], d);
+    const float cap = solver.speedCap(container.sizes().maxCoeff());
+    if (jet > kMaxEmitterSpeed || (cap > 0.0f && jet > cap)) {
+      err << "emitters[" << i << "]: " << jet << " m/s";
+      if (emitters[i].rate > 0.0f) err << " (rate " << emitters[i].rate << " m^3/s at particle_spacing " << d << " m)";
+      err << " is faster than ";
+      if (jet > kMaxEmitterSpeed) err << kMaxEmitterSpeed << " m/s";
+      else err << "the fluid's speed cap, " << cap << " m/s (max_speed_factor " << solver.max_speed_factor
+               << " times the free-fall speed across the container)";
       return err.str();
     }
   }

@@ -97,4 +97,10 @@ std::string SolverParams::validate() const {
   return err.str();
 }
 
+float SolverParams::speedCap(float longest_side) const {
+  if (max_speed_factor <= 0.0f || !(longest_side > 0.0f)) return 0.0f;
+  const float g = std::max(gravity.norm(), 9.81f);
+  return max_speed_factor * std::sqrt(2.0f * g * longest_side);
+}
+
 }  // namespace pbf

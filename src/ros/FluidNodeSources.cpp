@@ -78,6 +78,12 @@ void FluidNode::applySources(double dt) {
   }
   try {
     const pbf::FluidSources::StepResult r = sources_.afterStep(*solver_, dt, max_particles_);
+    for (std::size_t k : r.too_fast) {
+      PBF_WARN_THROTTLE(10.0, "pbf_node: emitter %zu: %.4g m/s is more than 8 particle spacings per step "
+                        "(dt %.3g s); its oldest layers were dropped (with adaptive_time_step the next "
+                        "steps shorten to the jet)", k, pbf::emitterSpeed(sources_.emitters()[k],
+                        solver_->params().particle_spacing), dt);
+    }
     for (std::size_t k : r.held_by_limit) {
       PBF_WARN_THROTTLE(5.0, "pbf_node: emitter %zu held: its layer would bring the fluid beyond "
                         "~max_particles (%zu particles); it emits again once drains make room",

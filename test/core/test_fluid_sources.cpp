@@ -277,6 +277,10 @@ TEST(FluidSources, BadEmittersDrainsAndBlocksAreNamed) {
   expectError("emitters:\n  - {position: [5, 0.1, 0.2], direction: [0, 0, -1], radius: 0.02, speed: 1}\n",
               "emitters[0].position is outside the container");
   expectError(nozzle + "radius: 0.02, speed: 3.0e8}\n", "'emitters[0].speed': expected at most 1000 m/s");
+  // No jet faster than the fluid's speed cap (4 x sqrt(2 g 0.4 m) = 11.2 m/s here), given as
+  // a speed or as a rate (5 sites of d^2: 1 m^3/s is 500 m/s); it was capped in silence.
+  expectError(nozzle + "radius: 0.02, speed: 50}\n", "emitters[0]: 50 m/s is faster than the fluid's speed cap, 11.2");
+  expectError(nozzle + "radius: 0.02, rate: 1}\n", "emitters[0]: 500 m/s (rate 1 m^3/s at particle_spacing 0.02 m)");
   expectError(nozzle + "radius: 1.0e30, speed: 1}\n", "emitters[0].radius 1e+30 m is more than 200 particle spacings");
   expectError("drains:\n  - {box: {min: [0.1, 0, 0], max: [0.0, 0.1, 0.1]}}\n", "'drains[0].box'");
   expectError("drains:\n  - {sphere: {center: [0.1, 0, 0], radius: inf}}\n", "'drains[0].sphere.radius'");
@@ -315,6 +319,35 @@ TEST(FluidSources, BadEmittersDrainsAndBlocksAreNamed) {
   EXPECT_THROW(sources.emitBlock(*solver, b, Eigen::Isometry3f::Identity(), 100000), std::invalid_argument);
   EXPECT_EQ(solver->size(), n0);
   EXPECT_EQ(sources.emitted(), 0u);
+}
+
+// A jet faster than 8 spacings per step (a fixed step, or the first one): the layers that
+// left the nozzle first are dropped and the newest 8 kept, so the jet starts at its nozzle.
+// Keeping the farthest put a 1000 m/s jet's layers metres ahead, outside the container, at
+// every step, and it never emitted (a helper probe).
+TEST(FluidSources, AJetTooFastForTheStepStartsAtItsNozzle) {
+  pbf::Scene scene = tankScene();
+  scene.solver.adaptive_time_step = false;
+  scene.solver.time_step = 1.0f / 60.0f;
+  auto solver = pbf_test::makeSolver(scene);
+  pbf::Emitter e;
+  e.position = Eigen::Vector3f(0.15f, 0.15f, 0.3f);
+  e.direction = Eigen::Vector3f(0.0f, 0.0f, -1.0f);
+  e.radius = 0.01f;  // one site per layer
+  e.speed = 12.0f;   // 0.2 m = 10 spacings per step of 1/60 s
+  pbf::FluidSources sources({e}, {}, solver->size());
+  const std::size_t n0 = solver->size();
+  const pbf::StepStats st = solver->step();
+  const pbf::FluidSources::StepResult r = sources.afterStep(*solver, st.dt, 100000);
+  ASSERT_EQ(r.too_fast, std::vector<std::size_t>{0});
+  ASSERT_EQ(r.emitted, 8u);
+  float nearest = 1.0f, farthest = 0.0f;
+  for (std::size_t k = n0; k < solver->size(); ++k) {
+    const float ahead = 0.3f - solver->positions()[k].z();
+    nearest = std::min(nearest, ahead), farthest = std::max(farthest, ahead);
+  }
+  EXPECT_NEAR(nearest, 0.0f, 1e-5f);
+  EXPECT_NEAR(farthest, 7 * 0.02f, 1e-5f);
 }
 
 }  // namespace

@@ -46,6 +46,10 @@ SiteCount keepFreeSites(const PbfSolver& solver, std::vector<Eigen::Vector3f>& s
 // out a scene's block. Empty when the block is invalid.
 std::vector<Eigen::Vector3f> blockSites(const FluidBlock& block, float d);
 
+// The speed [m/s] at which emitter `e` sends fluid at spacing d: its `speed`, or its `rate`
+// over the area of its nozzle's lattice sites (which depends on d).
+double emitterSpeed(const Emitter& e, float d);
+
 // Empty when a block can be emitted; otherwise what is wrong, naming the field ("min",
 // "max", "center", "radius", "velocity").
 std::string validateBlock(const FluidBlock& block);
@@ -69,6 +73,9 @@ class FluidSources {
     std::size_t drained = 0;
     // Emitters whose layer did not fit under max_particles this step (dropped, not queued).
     std::vector<std::size_t> held_by_limit;
+    // Emitters with more layers due than a step adds (the oldest were dropped): a jet faster
+    // than 8 spacings per step, with a fixed or first time step.
+    std::vector<std::size_t> too_fast;
   };
   // After a solver step of `dt` (ending at solver.time()): drains remove what is inside
   // them, then every open emitter adds the layers that are due. Never grows the solver

@@ -135,6 +135,9 @@ struct SolverParams {
   // The iterations every step makes at least: min_iterations, or the solve's own floor.
   int minIterations() const { return min_iterations > 0 ? min_iterations : (gauss_seidel ? 1 : 2); }
   float supportRadius() const { return support_radius_factor * particle_spacing; }
+  // The speed cap [m/s] in a container whose longest side is `longest_side` [m]:
+  // max_speed_factor * sqrt(2 max(|g|, 9.81) L); 0 = none.
+  float speedCap(float longest_side) const;
   // m = rho0 d^3: the water one cell of the start lattice holds. The fluid's weight, momentum
   // and kinetic energy, the forces on solids and the SPH volumes m / rho use it.
   float particleMass() const;
