@@ -8,6 +8,7 @@
 
 #include <pbf_ros/SimulationStats.h>
 
+#include "pbf_ros/ros/NodeParams.h"
 #include "pbf_ros/ros/ParamsConversion.h"
 #include "pbf_ros/ros/RenderCameraParams.h"
 #include "pbf_ros/ros/SceneLoading.h"
@@ -26,17 +27,6 @@ bool hasType(const XmlRpc::XmlRpcValue& value, const std::string& type) {
   }
 }
 
-// A boolean node setting; anything but true/false (e.g. start_paused:=maybe, which
-// roslaunch passes as a string) is an error rather than silently false.
-bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fallback) {
-  XmlRpc::XmlRpcValue value;
-  if (!nh.getParam(name, value)) return fallback;
-  if (value.getType() != XmlRpc::XmlRpcValue::TypeBoolean) {
-    throw std::runtime_error("parameter ~" + name + ": expected true or false, got " +
-                             value.toXml());
-  }
-  return static_cast<bool>(value);
-}
 }  // namespace
 
 FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
@@ -133,31 +123,29 @@ void FluidNode::readNodeSettings() {
                               "an earlier launch? fluid.launch sets it every time)");
   }
   int max_particles = static_cast<int>(max_particles_);
-  pnh_.param("max_particles", max_particles, max_particles);
+  max_particles = readInteger(pnh_, "max_particles", max_particles);
   if (max_particles < 1) {
     ROS_WARN("pbf_node: ~max_particles %d is not positive; using 1000000", max_particles);
     max_particles = 1000000;
   }
   max_particles_ = static_cast<std::size_t>(max_particles);
   robot_source_ = readRobotSource(pnh_);
-  pnh_.param("wrench_rate", wrench_rate_, wrench_rate_);
+  wrench_rate_ = readNumber(pnh_, "wrench_rate", wrench_rate_);
   if (!(wrench_rate_ > 0.0 && wrench_rate_ <= 1000.0)) {
     ROS_WARN("pbf_node: ~wrench_rate %g is not in (0, 1000] Hz; using 30", wrench_rate_);
     wrench_rate_ = 30.0;
   }
   track_wrenches_ = readBool(pnh_, "track_wrenches", track_wrenches_);
   double max_lag = 0.1;
-  pnh_.param("max_lag", max_lag, max_lag);
+  max_lag = readNumber(pnh_, "max_lag", max_lag);
   pacer_ = RealTimePacer(max_lag);
-  pnh_.param("diagnostics/rtf_warn_ratio", thresholds_.rtf_warn_ratio, thresholds_.rtf_warn_ratio);
-  pnh_.param("diagnostics/rtf_error_ratio", thresholds_.rtf_error_ratio,
-             thresholds_.rtf_error_ratio);
-  pnh_.param("diagnostics/density_error_warn", thresholds_.density_error_warn,
-             thresholds_.density_error_warn);
-  pnh_.param("diagnostics/density_error_error", thresholds_.density_error_error,
-             thresholds_.density_error_error);
-  double& capped = thresholds_.capped_steps_warn_fraction;
-  pnh_.param("diagnostics/capped_steps_warn_fraction", capped, capped);
+  HealthThresholds& t = thresholds_;
+  t.rtf_warn_ratio = readNumber(pnh_, "diagnostics/rtf_warn_ratio", t.rtf_warn_ratio);
+  t.rtf_error_ratio = readNumber(pnh_, "diagnostics/rtf_error_ratio", t.rtf_error_ratio);
+  t.density_error_warn = readNumber(pnh_, "diagnostics/density_error_warn", t.density_error_warn);
+  t.density_error_error = readNumber(pnh_, "diagnostics/density_error_error", t.density_error_error);
+  double& capped = t.capped_steps_warn_fraction;
+  capped = readNumber(pnh_, "diagnostics/capped_steps_warn_fraction", capped);
   if (!(capped >= 0.0 && capped <= 1.0)) {
     const double fallback = HealthThresholds().capped_steps_warn_fraction;
     ROS_WARN("pbf_node: ~diagnostics/capped_steps_warn_fraction %g is not in [0, 1]; using %g",

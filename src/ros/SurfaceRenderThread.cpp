@@ -16,6 +16,7 @@
 #include "pbf_ros/render/GlBackend.h"
 #include "pbf_ros/ros/CameraInfoConversion.h"
 #include "pbf_ros/ros/FluidNode.h"
+#include "pbf_ros/ros/NodeParams.h"
 #include "pbf_ros/ros/SurfaceImageConversion.h"
 #include "pbf_ros/ros/WallThrottle.h"
 
@@ -79,8 +80,8 @@ SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh) {
   private_nh.param<std::string>("shader_dir", s.shader_dir, default_shaders);
   private_nh.param<std::string>("frame_id", s.domain_frame, s.domain_frame);
   private_nh.param<std::string>("camera_frame_id", s.camera_frame, s.camera_frame);
-  private_nh.param("render_nice", s.nice, s.nice);
-  private_nh.param("render_idle_priority", s.idle_priority, s.idle_priority);
+  s.nice = readInteger(private_nh, "render_nice", s.nice);
+  s.idle_priority = readBool(private_nh, "render_idle_priority", s.idle_priority);
   return s;
 }
 

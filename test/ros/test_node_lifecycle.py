@@ -201,6 +201,12 @@ class NodeLifecycleTest(unittest.TestCase):
         scene = os.path.join(SCENES, 'coarse_tank.yaml')
         self._refused_at_startup(['_scene:=' + scene, '_start_paused:=maybe'],
                                  '~start_paused: expected true or false', 'maybe')
+        # A number of another type (roslaunch passes <param value="1e-9"/> on as a string)
+        # kept the default in silence.
+        self._refused_at_startup(['_scene:=' + scene, '_wrench_rate:=fast'],
+                                 '~wrench_rate: expected a number', 'fast')
+        self._refused_at_startup(['_scene:=' + scene, '_render_nice:=low'],
+                                 '~render_nice: expected an integer', 'low')
         self._refused_at_startup(['_scene:=' + SCENES], SCENES, 'is a directory')
         self._refused_at_startup(['_scene:=/dev/zero'], '/dev/zero', 'not a regular file')
         with tempfile.NamedTemporaryFile('w', suffix='.yaml', delete=False) as f:
