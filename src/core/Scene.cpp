@@ -586,7 +586,24 @@ std::string Scene::validate() const {
   for (const FloatingBodySpec& f : floating) {
     if (f.obstacle >= obstacles.size()) return "a floating body names obstacle " + std::to_string(f.obstacle) + ", which does not exist";
     if (!(f.mass > 0.0 && std::isfinite(f.mass))) return "floating obstacle " + std::to_string(f.obstacle) + ": mass must be > 0";
-    const double volume = solidVolume(obstacles[f.obstacle]);
+    // Contact keeps a body inside the container only if it fits there: a 1 m raft in a
+    // 0.6 x 0.4 m tank ended half outside it.
+    const Obstacle& body = obstacles[f.obstacle];
+    Eigen::Vector3f half = body.half_extents;
+    if (body.shape != Obstacle::Shape::Box) {
+      const float axial = body.half_length + (body.shape == Obstacle::Shape::Capsule ? body.radius : 0.0f);
+      half = body.shape == Obstacle::Shape::Sphere ? Eigen::Vector3f::Constant(body.radius)
+                                                   : Eigen::Vector3f(body.radius, body.radius, axial);
+    }
+    const Eigen::Vector3f extent = 2.0f * (body.pose.linear().cwiseAbs() * half);
+    if ((extent.array() > container.sizes().array()).any()) {
+      std::ostringstream e;
+      e << "floating obstacle " << f.obstacle << " (" << extent.x() << " x " << extent.y() << " x " << extent.z()
+        << " m as it starts) does not fit in the container (" << container.sizes().x() << " x "
+        << container.sizes().y() << " x " << container.sizes().z() << " m)";
+      return e.str();
+    }
+    const double volume = solidVolume(body);
     if (volume > 0.0 && f.mass / volume < kLightestFloatingDensityRatio * solver.rest_density) {
       std::ostringstream e;
       e << "floating obstacle " << f.obstacle << ": density " << f.mass / volume

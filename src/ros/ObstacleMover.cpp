@@ -1,4 +1,5 @@
 #include "pbf_ros/ros/ObstacleMover.h"
+#include "pbf_ros/ros/EchoedText.h"
 #include "pbf_ros/ros/SceneMarkers.h"
 #include "pbf_ros/ros/WallThrottle.h"
 
@@ -205,11 +206,18 @@ bool ObstacleMover::apply(pbf::PbfSolver& solver, pbf::Scene& scene) {
       Eigen::Isometry3f frame;
       if (!frame_pose_(target.frame, frame)) {
         PBF_WARN_THROTTLE(2.0, "pbf_node: obstacle_%zu: no tf from %s to '%s'; the move is dropped", k,
-                          domain_frame_.c_str(), target.frame.c_str());
+                          domain_frame_.c_str(), echoed(target.frame).c_str());
         arrived.push_back(k);
         continue;
       }
       goal = frame * target.pose;
+    }
+    // Allowed (lifting a solid out of the water is a move too), but said: a typo sends it away.
+    if (!solver.container().isEmpty() &&
+        !solver.container().contains(solver.containerPose().inverse() * goal.translation())) {
+      PBF_WARN_THROTTLE(10.0, "pbf_node: obstacle_%zu: its target (%g, %g, %g) in %s is outside the "
+                        "container; it leaves the fluid", k, goal.translation().x(), goal.translation().y(),
+                        goal.translation().z(), domain_frame_.c_str());
     }
     const pbf::Obstacle& o = solver.obstacles()[k];
     const Eigen::Isometry3f next = stepToward(o.pose, goal, max_move, o.boundingRadius());

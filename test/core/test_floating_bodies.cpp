@@ -190,7 +190,7 @@ TEST(FloatingBodies, RigidBodyFallsOntoTheFloorTipsFlatAndRests) {
 // pose overflowed to infinity and the solver refused it (std::invalid_argument). Scenes now
 // refuse such bodies, and a body whose step would overflow stays where it was, at rest; its
 // speed, and its rim's, keep to the fluid's cap.
-TEST(FloatingBodies, ALightBodyIsRefusedAndNoStepLeavesAPoseThatIsNotFinite) {
+TEST(FloatingBodies, ABodyTooLightOrTooLargeIsRefusedAndNoStepLeavesAPoseThatIsNotFinite) {
   pbf::Obstacle ball;
   ball.shape = pbf::Obstacle::Shape::Sphere;
   ball.radius = 0.05f;
@@ -203,6 +203,14 @@ TEST(FloatingBodies, ALightBodyIsRefusedAndNoStepLeavesAPoseThatIsNotFinite) {
   }
   scene.floating = {{0, 20.0 * volume, pbf::solidInertia(ball, 20.0 * volume)}};
   EXPECT_EQ(scene.validate(), "");
+  // Nor a body larger than the container (a probe's 1 m raft in a 0.6 x 0.4 m tank ended half
+  // outside it): the tank here is 0.4 m wide.
+  pbf::Scene raft = scene;
+  raft.obstacles[0].shape = pbf::Obstacle::Shape::Box;
+  raft.obstacles[0].half_extents = Eigen::Vector3f(0.25f, 0.1f, 0.02f);
+  raft.floating = {{0, 500.0 * pbf::solidVolume(raft.obstacles[0]),
+                    pbf::solidInertia(raft.obstacles[0], 500.0 * pbf::solidVolume(raft.obstacles[0]))}};
+  EXPECT_NE(raft.validate().find("does not fit in the container"), std::string::npos) << raft.validate();
 
   pbf::RigidBody light(ball, 1e-12, pbf::solidInertia(ball, 1e-12));
   pbf::Wrench push;
