@@ -81,10 +81,13 @@ def cup_at(keyframes, t):
 
 def check(keyframes):
     """Raises ValueError naming the first keyframe that is unusable."""
-    if not keyframes:
-        raise ValueError('~keyframes is empty')
+    if not isinstance(keyframes, list) or not keyframes:
+        raise ValueError('~keyframes: expected a list of [t, x, z, pitch], got %r' % (keyframes,))
     for k, frame in enumerate(keyframes):
-        if len(frame) != 4 or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in frame):
+        # bool is an int in Python: a `true` among the numbers is not one.
+        if (not isinstance(frame, list) or len(frame) != 4 or
+                not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                        for v in frame)):
             raise ValueError('~keyframes[%d]: expected [t, x, z, pitch] (finite numbers), got %r' % (k, frame))
         if k > 0 and frame[0] <= keyframes[k - 1][0]:
             raise ValueError('~keyframes[%d]: times must increase' % k)
@@ -123,13 +126,22 @@ def message(stamp, angles):
 def main():
     rospy.init_node('pouring_arm_trajectory')
     keyframes = rospy.get_param('~keyframes', DEFAULT_KEYFRAMES)
-    rate_hz = float(rospy.get_param('~rate', 100.0))
-    startup_stamp = float(rospy.get_param('~startup_stamp', 0.02))
-    lookahead = float(rospy.get_param('~lookahead', 0.05))
+
+    def number(name, default):
+        value = rospy.get_param(name, default)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ValueError('%s: expected a finite number, got %r' % (name, value))
+        return float(value)
+
     try:
+        rate_hz = number('~rate', 100.0)
+        startup_stamp = number('~startup_stamp', 0.02)
+        lookahead = number('~lookahead', 0.05)
         check(keyframes)
-        if not rate_hz > 0.0:
-            raise ValueError('~rate must be > 0')
+        if not 0.0 < rate_hz <= 10000.0:
+            raise ValueError('~rate must be in (0, 10000] Hz')
+        if not 0.0 < startup_stamp <= 60.0:
+            raise ValueError('~startup_stamp must be in (0, 60] s')
         if not 0.0 <= lookahead <= 1.0:
             raise ValueError('~lookahead must be in [0, 1] s')
     except ValueError as e:

@@ -23,6 +23,7 @@ spacing is read from the node's dynamic_reconfigure parameter `particle_spacing`
 node's reconfigure service is up (at most --wait seconds), unless --spacing gives it.
 """
 import argparse
+import math
 import os
 import sys
 
@@ -124,14 +125,23 @@ def main(argv):
                         help='parameter holding a URDF to show with a RobotModel display')
     parser.add_argument('--wrench', action='append', metavar='SOLID',
                         help="show the node's ~wrench/SOLID (repeatable)")
-    parser.add_argument('--config', default=os.path.join(
-        os.path.dirname(os.path.realpath(__file__)), '..', 'config', 'pbf.rviz'))
+    parser.add_argument('--config', help="rviz config to start from (default: the package's pbf.rviz)")
     parser.add_argument('--output')
     parser.add_argument('--no-rviz', action='store_true', help='only write the config')
     args, rest = parser.parse_known_args(argv)
-    if not os.path.isfile(args.config):
-        import rospkg
-        args.config = os.path.join(rospkg.RosPack().get_path('pbf_ros'), 'config', 'pbf.rviz')
+    # Refused by name, not written into the config (a probe's --spacing nan gave 'Size (m): .nan').
+    if args.spacing is not None and not (math.isfinite(args.spacing) and 0.0 < args.spacing <= 10.0):
+        parser.error('--spacing: expected a particle spacing in (0, 10] m, got %r' % args.spacing)
+    if not (math.isfinite(args.wait) and args.wait >= 0.0):
+        parser.error('--wait: expected seconds >= 0, got %r' % args.wait)
+    if args.config is None:
+        # The source tree's, or the installed package's.
+        args.config = os.path.join(os.path.dirname(os.path.realpath(__file__)), '..', 'config', 'pbf.rviz')
+        if not os.path.isfile(args.config):
+            import rospkg
+            args.config = os.path.join(rospkg.RosPack().get_path('pbf_ros'), 'config', 'pbf.rviz')
+    elif not os.path.isfile(args.config):
+        parser.error('--config: no such file: %s' % args.config)
 
     node = resolve_node(args.node)
     spacing = args.spacing if args.spacing is not None else node_spacing(node, args.wait)
@@ -147,8 +157,11 @@ def main(argv):
         directory = os.path.join(rospkg.get_ros_home(), 'pbf_ros')
         os.makedirs(directory, exist_ok=True)
         output = os.path.join(directory, 'rviz%s.rviz' % node.replace('/', '_'))
-    with open(output, 'w') as f:
-        yaml.safe_dump(config, f, default_flow_style=False, sort_keys=False)
+    try:
+        with open(output, 'w') as f:
+            yaml.safe_dump(config, f, default_flow_style=False, sort_keys=False)
+    except OSError as e:
+        parser.error('--output: cannot write %s: %s' % (output, e.strerror))
     if args.no_rviz:
         print(output)
         return 0
