@@ -65,9 +65,15 @@ std::int64_t cellKey(const Eigen::Vector3i& c) {
 
 }  // namespace
 
+namespace {
+// Its speed, or its rate through `sites` lattice sites of d^2 each.
+double speedThrough(const Emitter& e, std::size_t sites, float d) {
+  return e.speed > 0.0f ? double(e.speed) : double(e.rate) / (double(sites) * d * d);
+}
+}  // namespace
+
 double emitterSpeed(const Emitter& e, float d) {
-  if (e.speed > 0.0f) return e.speed;
-  return double(e.rate) / (double(discSites(e.radius, d).size()) * d * d);
+  return speedThrough(e, discSites(e.radius, d).size(), d);
 }
 
 std::string Emitter::validate() const {
@@ -297,7 +303,7 @@ std::size_t FluidSources::emitLayers(PbfSolver& solver, std::size_t k, double dt
   if (open <= 0.0) return 0;
   const std::vector<Eigen::Vector2f> disc = discSites(e.radius, d);
   // Scene::validate bounds a rate's speed too; a direct caller's is capped here.
-  const double speed = std::min<double>(kMaxEmitterSpeed, emitterSpeed(e, d));
+  const double speed = std::min<double>(kMaxEmitterSpeed, speedThrough(e, disc.size(), d));
   s.travel += speed * open;
   // More layers due than a step may add (a jet faster than kMaxLayersPerStep spacings per
   // step): the ones that left first, farthest from the nozzle, are dropped and the newest

@@ -91,6 +91,17 @@ float Obstacle::boundingRadius() const {
   return 0.0f;
 }
 
+Eigen::Vector3f Obstacle::localHalfExtents() const {
+  switch (shape) {
+    case Shape::Box: return half_extents;
+    case Shape::Sphere: return Eigen::Vector3f::Constant(radius);
+    case Shape::Capsule: return Eigen::Vector3f(radius, radius, half_length + radius);
+    case Shape::Cylinder: return Eigen::Vector3f(radius, radius, half_length);
+    case Shape::Mesh: break;
+  }
+  return Eigen::Vector3f::Constant(boundingRadius());
+}
+
 std::string Obstacle::validate() const {
   std::ostringstream err;
   const bool round = shape == Shape::Sphere || shape == Shape::Capsule || shape == Shape::Cylinder;

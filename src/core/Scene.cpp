@@ -589,13 +589,7 @@ std::string Scene::validate() const {
     // Contact keeps a body inside the container only if it fits there: a 1 m raft in a
     // 0.6 x 0.4 m tank ended half outside it.
     const Obstacle& body = obstacles[f.obstacle];
-    Eigen::Vector3f half = body.half_extents;
-    if (body.shape != Obstacle::Shape::Box) {
-      const float axial = body.half_length + (body.shape == Obstacle::Shape::Capsule ? body.radius : 0.0f);
-      half = body.shape == Obstacle::Shape::Sphere ? Eigen::Vector3f::Constant(body.radius)
-                                                   : Eigen::Vector3f(body.radius, body.radius, axial);
-    }
-    const Eigen::Vector3f extent = 2.0f * (body.pose.linear().cwiseAbs() * half);
+    const Eigen::Vector3f extent = 2.0f * (body.pose.linear().cwiseAbs() * body.localHalfExtents());
     if ((extent.array() > container.sizes().array()).any()) {
       std::ostringstream e;
       e << "floating obstacle " << f.obstacle << " (" << extent.x() << " x " << extent.y() << " x " << extent.z()

@@ -35,6 +35,9 @@ struct Obstacle {
   float signedDistance(const Eigen::Vector3f& p, Eigen::Vector3f& normal) const;
   // Radius of a sphere around pose.translation() containing the whole obstacle.
   float boundingRadius() const;
+  // Half the sides of the box containing the obstacle in its own axes (a mesh: the sphere's
+  // box, boundingRadius()).
+  Eigen::Vector3f localHalfExtents() const;
   // Empty when usable; otherwise what is wrong.
   std::string validate() const;
 };
