@@ -162,4 +162,13 @@ BENCHMARK(BM_DamBreakStep)
     ->ArgsProduct({{20}, {1, 2}, {kWallDensity}, {0, 1}})
     ->Apply(timedDamBreak);
 
+// The shipped solve's scaling: 4 Gauss-Seidel sweeps per step at every size, beside the first
+// registration's 4 Jacobi iterations (the baseline's solve, which issue 10's ratios compare);
+// scripts/step_benchmark_slope.py fits the slopes of both from --benchmark_out's JSON:
+//   pbf_step_benchmark --benchmark_filter=BM_GaussSeidelScaling --benchmark_repetitions=3
+BENCHMARK(BM_DamBreakStep)
+    ->Name("BM_GaussSeidelScaling")
+    ->ArgsProduct({{20, 80, 320}, {1, 2}, {kWallDensity}, {1}})
+    ->Apply(timedDamBreak);
+
 BENCHMARK_MAIN();
