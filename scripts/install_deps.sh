@@ -27,6 +27,8 @@ PACKAGES=(
   image-transport-tools python3-nodelet ros-tf2-msgs
   # robots as solids: URDF, and meshes through geometric_shapes (assimp); check_urdf
   liburdf-dev libgeometric-shapes-dev liburdfdom-tools
+  # ~robot_link_regex: Boost.Regex bounds a match's work (std::regex does not)
+  libboost-regex-dev
   # tf for a robot description (robot_solids rostest, robot demos)
   ros-robot-state-publisher
   # headless rendering

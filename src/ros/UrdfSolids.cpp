@@ -1,15 +1,16 @@
 #include "pbf_ros/ros/UrdfSolids.h"
 
+#include <boost/regex.hpp>
 #include <urdf/model.h>
 
 #include <map>
 #include <memory>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "ConsoleBridgeCapture.h"
+#include "pbf_ros/ros/EchoedText.h"
 #include "pbf_ros/ros/MeshResource.h"
 
 namespace pbf_ros {
@@ -118,19 +119,40 @@ bool toObstacle(const urdf::Geometry& g, MeshGrids& meshes, pbf::Obstacle& o, st
 }
 
 // The links that take part, in name order, with problems for what was asked but is missing.
+// The regex is Boost's, not std::regex: a pattern with nested quantifiers, e.g.
+// `(\w+_?)+_link`, backtracks exponentially, and std::regex_match then ran for minutes on
+// a 35-character link name (the node hung at start-up and ignored SIGINT), or overflowed
+// the stack on a very long name (SIGSEGV). Boost.Regex bounds a match's work and its own
+// stack, and throws instead: the pattern is then refused, naming the link it choked on.
 std::vector<urdf::LinkConstSharedPtr> selectLinks(const urdf::Model& model, const UrdfSolidsOptions& options,
                                                   std::vector<std::string>& problems) {
-  std::unique_ptr<std::regex> pattern;
+  std::unique_ptr<boost::regex> pattern;
   if (!options.link_regex.empty()) {
     try {
-      pattern = std::make_unique<std::regex>(options.link_regex, std::regex::ECMAScript);
-    } catch (const std::regex_error& e) {
+      pattern = std::make_unique<boost::regex>(options.link_regex, boost::regex::ECMAScript);
+    } catch (const std::exception& e) {  // boost::regex_error
       problems.push_back("link regex '" + options.link_regex + "' is not a valid regular expression (" +
                          e.what() + "): no links selected");
       return {};
     }
   }
-  auto matches = [&](const std::string& name) { return !pattern || std::regex_match(name, *pattern); };
+  std::string too_costly;  // the first link name the pattern could not be matched against
+  auto matches = [&](const std::string& name) {
+    if (!pattern) return true;
+    try {
+      return boost::regex_match(name, *pattern);
+    } catch (const std::exception&) {  // the match's work or stack bound
+      if (too_costly.empty()) too_costly = name;
+      return false;
+    }
+  };
+  auto refuseIfTooCostly = [&]() {
+    if (too_costly.empty()) return false;
+    problems.push_back("link regex '" + echoed(options.link_regex) + "' takes too long to match link '" +
+                       echoed(too_costly) +
+                       "' (nested repetitions such as (a+)+ backtrack without end): no links selected");
+    return true;
+  };
   std::vector<urdf::LinkConstSharedPtr> selected;
   if (!options.links.empty()) {
     std::set<std::string> seen;
@@ -144,10 +166,12 @@ std::vector<urdf::LinkConstSharedPtr> selectLinks(const urdf::Model& model, cons
       else if (matches(name))
         selected.push_back(link);
     }
+    if (refuseIfTooCostly()) return {};
     return selected;
   }
   for (const auto& [name, link] : model.links_)
     if (!(link->collision_array.empty() && !link->collision) && matches(name)) selected.push_back(link);
+  if (refuseIfTooCostly()) return {};
   if (selected.empty())
     problems.push_back("no link of robot '" + model.getName() + "' has collision geometry" +
                        (pattern ? " and matches '" + options.link_regex + "'" : std::string()));

@@ -129,6 +129,41 @@ TEST(UrdfSolids, LinksAreSelectedByListOrRegex) {
   EXPECT_EQ(s.problems[0], "no link of robot 'testbot' has collision geometry and matches 'leg_.*'");
 }
 
+// A pattern with nested repetitions backtracks exponentially: std::regex ran for minutes on a
+// 35-character link name (the node hung at start-up) and overflowed the stack on a 20 000-
+// character one. The match's work is bounded now: the pattern is refused, naming the link,
+// and the long name is matched.
+TEST(UrdfSolids, ALinkRegexThatBacktracksWithoutEndIsRefusedByName) {
+  const std::string slow_name = "shoulder_pan_upper_arm_elbow_wrist_";
+  const std::string long_name(20000, 'a');
+  const std::string ball = collision("<sphere radius=\"0.04\"/>");
+  auto fixedJoint = [](const std::string& name, const std::string& child) {
+    return "<joint name=\"" + name + "\" type=\"fixed\"><parent link=\"arm_link\"/><child link=\"" + child +
+           "\"/></joint>";
+  };
+  const std::string urdf = robot(link("arm_link", ball) + link(slow_name, ball) + link(long_name, ball) +
+                                 fixedJoint("a", slow_name) + fixedJoint("b", long_name));
+  pbf_ros::UrdfSolidsOptions o = options();
+  o.link_regex = "(\\w+_?)+_link";
+  pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, o);
+  EXPECT_TRUE(s.solids.empty());
+  ASSERT_EQ(s.problems.size(), 1u) << joined(s.problems);
+  EXPECT_NE(s.problems[0].find("link regex '(\\w+_?)+_link' takes too long to match link '"), std::string::npos)
+      << s.problems[0];
+
+  o.link_regex = "(a|b)*";  // the very long name, which overflowed std::regex's stack, matches
+  s = pbf_ros::urdfSolids(urdf, o);
+  EXPECT_EQ(s.problems.size(), 0u) << joined(s.problems);
+  ASSERT_EQ(s.solids.size(), 1u);
+  EXPECT_EQ(s.solids[0].link, long_name);
+
+  o.link_regex = "arm_.*";  // an ordinary pattern on the same robot
+  s = pbf_ros::urdfSolids(urdf, o);
+  EXPECT_EQ(s.problems.size(), 0u) << joined(s.problems);
+  ASSERT_EQ(s.solids.size(), 1u);
+  EXPECT_EQ(s.solids[0].link, "arm_link");
+}
+
 TEST(UrdfSolids, AnUnparsableUrdfSaysWhy) {
   pbf_ros::UrdfSolids s = pbf_ros::urdfSolids("<robot name=\"x\"><link name=\"a\">", options());
   EXPECT_TRUE(s.solids.empty());
