@@ -242,19 +242,20 @@ std::shared_ptr<const SignedDistanceGrid> SignedDistanceGrid::build(
   grid->band_ = options.band;
   grid->origin_ = lo - Eigen::Vector3f::Constant(options.band);
   const Eigen::Vector3f extent = hi - lo + Eigen::Vector3f::Constant(2.0f * options.band);
-  double count = 1.0;
-  for (int a = 0; a < 3; ++a) {
-    grid->dims_[a] = int(std::ceil(extent[a] / options.cell)) + 1;
-    count *= grid->dims_[a];
-  }
+  // Counted in doubles before any int holds them: a mesh scaled to 1e9 m has more nodes on
+  // one axis than an int counts, and the wrapped count passed the memory check below.
+  Eigen::Array3d nodes;
+  for (int a = 0; a < 3; ++a) nodes[a] = std::ceil(double(extent[a]) / options.cell) + 1.0;
+  const double count = nodes.prod();
   // Building needs the values, the closest triangles and the votes: 9 bytes per node.
-  if (count * 9.0 > double(options.max_bytes)) {
+  if (!(count * 9.0 <= double(options.max_bytes))) {
     std::ostringstream err;
-    err << "SDF grid of " << grid->dims_.transpose() << " nodes (cell " << options.cell << " m over "
+    err << "SDF grid of " << nodes.transpose() << " nodes (cell " << options.cell << " m over "
         << extent.transpose() << " m) would need " << count * 9.0 / (1 << 20) << " MiB, over the limit of "
         << double(options.max_bytes) / (1 << 20) << " MiB: use a larger cell";
     throw std::invalid_argument(err.str());
   }
+  grid->dims_ = nodes.cast<int>().matrix();
 
   GridBuilder builder(mesh, grid->origin_, grid->dims_, options.cell, options.band);
   grid->values_ = builder.distances();

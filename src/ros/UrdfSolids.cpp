@@ -68,7 +68,7 @@ class MeshGrids {
                "the solid's inside is a guess, and it may push water that should rest";
     try {
       e.grid = pbf::SignedDistanceGrid::build(mesh, options_);
-    } catch (const std::invalid_argument& ex) {
+    } catch (const std::exception& ex) {  // std::invalid_argument; bad_alloc just in case
       e.error = std::string("cannot bound a solid: ") + ex.what();
     }
     return e;
