@@ -3,6 +3,8 @@
 #include <boost/regex.hpp>
 #include <urdf/model.h>
 
+#include <algorithm>
+#include <iomanip>
 #include <map>
 #include <memory>
 #include <set>
@@ -29,7 +31,8 @@ Eigen::Isometry3f isometry(const urdf::Pose& p) {
 // and a file that failed is not tried again.
 class MeshGrids {
  public:
-  explicit MeshGrids(const pbf::SignedDistanceGridOptions& options) : options_(options) {}
+  MeshGrids(const pbf::SignedDistanceGridOptions& options, std::size_t max_bytes_in_all)
+      : options_(options), max_bytes_in_all_(max_bytes_in_all) {}
 
   // `flaw`: what is wrong with a mesh that still takes part ("" when nothing is).
   std::shared_ptr<const pbf::SignedDistanceGrid> get(const urdf::Mesh& m, std::string& error,
@@ -37,7 +40,10 @@ class MeshGrids {
     std::ostringstream key;
     key << m.filename << " " << m.scale.x << " " << m.scale.y << " " << m.scale.z;
     auto found = cache_.find(key.str());
-    if (found == cache_.end()) found = cache_.emplace(key.str(), build(m)).first;
+    if (found == cache_.end()) {
+      found = cache_.emplace(key.str(), build(m)).first;
+      if (found->second.grid) kept_bytes_ += found->second.grid->memoryBytes();
+    }
     error = found->second.error;
     flaw = found->second.flaw;
     return found->second.grid;
@@ -66,16 +72,33 @@ class MeshGrids {
     if (const std::size_t open = mesh.openEdges(); open > 0)
       e.flaw = "the mesh is not closed (" + std::to_string(open) + " open edges): near its holes " +
                "the solid's inside is a guess, and it may push water that should rest";
+    // What is left of the robot's budget for grids bounds this one too (9 bytes per node
+    // while it is built, 4 kept).
+    pbf::SignedDistanceGridOptions options = options_;
+    const std::size_t left = max_bytes_in_all_ - std::min(kept_bytes_, max_bytes_in_all_);
+    const bool budget_bounds = left / 4 * 9 < options.max_bytes;
+    if (budget_bounds) options.max_bytes = left / 4 * 9;
     try {
-      e.grid = pbf::SignedDistanceGrid::build(mesh, options_);
+      e.grid = pbf::SignedDistanceGrid::build(mesh, options);
     } catch (const std::exception& ex) {  // std::invalid_argument; bad_alloc just in case
       e.error = std::string("cannot bound a solid: ") + ex.what();
+      if (budget_bounds)
+        e.error += " (the robot's mesh grids may take " + mib(max_bytes_in_all_) +
+                   " in all, and the meshes before this one took " + mib(kept_bytes_) + ")";
     }
     return e;
   }
 
+  static std::string mib(std::size_t bytes) {
+    std::ostringstream out;
+    out << std::setprecision(3) << double(bytes) / (1 << 20) << " MiB";
+    return out.str();
+  }
+
   pbf::SignedDistanceGridOptions options_;
+  std::size_t max_bytes_in_all_;
   std::map<std::string, Entry> cache_;
+  std::size_t kept_bytes_ = 0;  // the grids built so far
 };
 
 // The obstacle for one <collision>'s geometry; false, with `error`, when it is unusable.
@@ -214,7 +237,7 @@ UrdfSolids urdfSolids(const std::string& urdf_xml, const UrdfSolidsOptions& opti
   if (const std::string err = options.sdf.validate(); !err.empty()) {
     out.problems.push_back("mesh grid options: " + err + " (mesh links left out)");
   }
-  MeshGrids meshes(options.sdf);
+  MeshGrids meshes(options.sdf, options.max_mesh_grid_bytes);
   std::size_t left_over = 0;  // solids beyond options.max_solids
   std::string first_left_over;
   for (const urdf::LinkConstSharedPtr& link : selectLinks(model, options, out.problems)) {

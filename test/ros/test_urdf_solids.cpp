@@ -205,6 +205,35 @@ TEST(UrdfSolids, AMeshLinkGetsAScaledSignedDistanceGridSharedWithItsTwins) {
   EXPECT_LT(n.z(), -0.999f);
 }
 
+// Each grid is bounded, but a robot of many large meshes (each scale its own grid) could
+// ask for more memory than the machine has: the grids share one budget, and a mesh whose
+// grid does not fit in what is left is refused by name while the others take part.
+TEST(UrdfSolids, MeshGridsShareOneMemoryBudget) {
+  pbf_ros::UrdfSolidsOptions o = options();
+  const std::size_t one =
+      pbf_ros::urdfSolids(robot(link("cup", collision(meshGeometry(kCupStl, "2 2 2")))), o).sdfBytes();
+  ASSERT_GT(one, 0u);
+  o.max_mesh_grid_bytes = one * 5 / 2;  // room for two such grids, not three
+  const std::string urdf = robot(
+      link("cup_a", collision(meshGeometry(kCupStl, "2 2 2"))) +
+      link("cup_b", collision(meshGeometry(kCupStl, "2.01 2.01 2.01"))) +
+      link("cup_c", collision(meshGeometry(kCupStl, "2.02 2.02 2.02"))) +
+      link("cup_d", collision(meshGeometry(kCupStl, "2 2 2"))) +  // cup_a's grid: no more memory
+      "<joint name=\"a\" type=\"fixed\"><parent link=\"cup_a\"/><child link=\"cup_b\"/></joint>"
+      "<joint name=\"b\" type=\"fixed\"><parent link=\"cup_a\"/><child link=\"cup_c\"/></joint>"
+      "<joint name=\"c\" type=\"fixed\"><parent link=\"cup_a\"/><child link=\"cup_d\"/></joint>");
+  const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, o);
+  std::printf("%s", joined(s.problems).c_str());
+  ASSERT_EQ(s.solids.size(), 3u) << joined(s.problems);
+  EXPECT_EQ(s.solids[0].link, "cup_a");
+  EXPECT_EQ(s.solids[1].link, "cup_b");
+  EXPECT_EQ(s.solids[2].link, "cup_d");
+  EXPECT_LE(s.sdfBytes(), o.max_mesh_grid_bytes);
+  ASSERT_EQ(s.problems.size(), 1u) << joined(s.problems);
+  EXPECT_NE(s.problems[0].find("link 'cup_c'"), std::string::npos) << s.problems[0];
+  EXPECT_NE(s.problems[0].find("the robot's mesh grids may take"), std::string::npos) << s.problems[0];
+}
+
 TEST(UrdfSolids, AColladaMeshIsReadLikeAnStl) {
   // DAE through the same reader (geometric_shapes -> assimp): a closed 10 x 6 x 4 cm box.
   const std::string dae = "file://" + kSource + "/test/data/unit_box.dae";
@@ -252,6 +281,40 @@ TEST(UrdfSolids, AMissingOrDegenerateMeshIsReportedAndTheRestStays) {
   EXPECT_NE(s.problems[3].find("link 'zero' collision 0 (sphere): radius must be finite and > 0"),
             std::string::npos) << s.problems[3];
   for (const auto& p : s.problems) EXPECT_NE(p.find("left out"), std::string::npos) << p;
+}
+
+// A mesh is read whole into memory before its triangles are counted: a file that never ends
+// (/dev/zero) grew the node without bound, and a download could be of any size. Only local
+// regular files up to kMaxMeshFileBytes are read; each refusal names the link and says why.
+TEST(UrdfSolids, MeshFilesAreReadOnlyWhenLocalRegularAndSmall) {
+  const std::string big = ::testing::TempDir() + "pbf_big_mesh.stl";
+  {
+    std::ofstream out(big, std::ios::binary);
+    out.seekp(static_cast<std::streamoff>(40) << 20);  // 40 MiB, sparse: no disk used
+    out.put('\0');
+  }
+  const std::string urdf = robot(
+      link("base", collision("<box size=\"0.1 0.1 0.1\"/>")) +
+      link("endless", collision(meshGeometry("file:///dev/zero"))) +
+      link("huge", collision(meshGeometry("file://" + big))) +
+      link("remote", collision(meshGeometry("http://localhost:9/arm.stl"))) +
+      "<joint name=\"a\" type=\"fixed\"><parent link=\"base\"/><child link=\"endless\"/></joint>"
+      "<joint name=\"b\" type=\"fixed\"><parent link=\"base\"/><child link=\"huge\"/></joint>"
+      "<joint name=\"c\" type=\"fixed\"><parent link=\"base\"/><child link=\"remote\"/></joint>");
+  const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, options());
+  std::remove(big.c_str());
+  ASSERT_EQ(s.solids.size(), 1u);
+  EXPECT_EQ(s.solids[0].link, "base");
+  ASSERT_EQ(s.problems.size(), 3u) << joined(s.problems);
+  // In link name order: endless, huge, remote.
+  EXPECT_NE(s.problems[0].find("link 'endless' collision 0 (mesh 'file:///dev/zero'): cannot read mesh "
+                               "'file:///dev/zero': not a regular file"),
+            std::string::npos) << s.problems[0];
+  EXPECT_NE(s.problems[1].find("link 'huge'"), std::string::npos) << s.problems[1];
+  EXPECT_NE(s.problems[1].find("40.0 MiB, more than the 32 MiB a collision mesh file may have"), std::string::npos)
+      << s.problems[1];
+  EXPECT_NE(s.problems[2].find("link 'remote'"), std::string::npos) << s.problems[2];
+  EXPECT_NE(s.problems[2].find("only local meshes are read"), std::string::npos) << s.problems[2];
 }
 
 // A binary STL of `triangles` (each as three corners) at `path`.

@@ -14,6 +14,12 @@
 
 namespace pbf_ros {
 
+// All of a robot's mesh grids together keep at most this much memory: each grid is bounded
+// (SignedDistanceGridOptions::max_bytes while it is built, 4 of those 9 bytes per node kept),
+// but a robot of 256 solids could have asked for 28 GiB. A mesh whose grid would not fit in
+// what is left is refused by name. The shipped arm's grids take 0.37 MiB at d = 0.01 m.
+constexpr std::size_t kMaxMeshGridBytesInAll = std::size_t(512) << 20;
+
 struct UrdfSolidsOptions {
   // Which links take part. Both empty: every link with collision geometry. `links` names
   // them (each must exist and have collision geometry); `link_regex` (ECMAScript, matched
@@ -23,6 +29,8 @@ struct UrdfSolidsOptions {
   // Resolution and margin of mesh grids; the node uses cell = particle spacing / 2 and
   // band = support radius + particle spacing.
   pbf::SignedDistanceGridOptions sdf;
+  // What the robot's mesh grids may keep in all (bytes).
+  std::size_t max_mesh_grid_bytes = kMaxMeshGridBytesInAll;
   // At most this many solids take part (a scene may hold as many obstacles); the rest are
   // left out with one problem that says how many.
   std::size_t max_solids = pbf::kMaxObstacles;
