@@ -79,7 +79,8 @@ double emitterSpeed(const Emitter& e, float d) {
 std::string Emitter::validate() const {
   std::ostringstream e;
   if (!position.allFinite()) return "position: expected 3 finite numbers, got " + describe(position);
-  if (!direction.allFinite() || !(direction.norm() > 1e-6f))
+  // stableNorm: a direction of [1e38, 1e38, 0] is fine, though its plain norm overflows.
+  if (!direction.allFinite() || !(direction.stableNorm() > 1e-6f))
     return "direction: expected a finite, non-zero vector, got " + describe(direction);
   if (!finite(radius) || !(radius > 0.0f)) {
     e << "radius: expected a number > 0 [m], got " << radius;
@@ -245,7 +246,7 @@ FluidSources::FluidSources(std::vector<Emitter> emitters, std::vector<Drain> dra
   for (std::size_t k = 0; k < emitters_.size(); ++k) {
     const std::string err = emitters_[k].validate();
     if (!err.empty()) throw std::invalid_argument("emitters[" + std::to_string(k) + "]." + err);
-    emitters_[k].direction.normalize();
+    emitters_[k].direction.stableNormalize();
   }
   for (std::size_t k = 0; k < drains_.size(); ++k) {
     const std::string err = drains_[k].validate();
@@ -350,10 +351,13 @@ SiteCount FluidSources::emitBlock(PbfSolver& solver, const FluidBlock& block,
   const float d = solver.params().particle_spacing;
   const double bound = blockLatticePoints(block, d);
   const std::size_t room = max_particles > solver.size() ? max_particles - solver.size() : 0;
-  if (bound > kSiteWalkFactor * static_cast<double>(max_particles)) {
+  if (!(bound <= kSiteWalkFactor * static_cast<double>(max_particles))) {
     std::ostringstream m;
-    m << "the block holds about " << bound << " lattice sites at spacing " << d
-      << " m, more than the particle limit max_particles (" << max_particles
+    if (std::isfinite(bound))
+      m << "the block holds about " << bound << " lattice sites at spacing " << d;
+    else
+      m << "the block holds more lattice sites than can be counted at spacing " << d;
+    m << " m, more than the particle limit max_particles (" << max_particles
       << ") allows; nothing added";
     throw std::invalid_argument(m.str());
   }

@@ -341,7 +341,7 @@ Emitter readEmitter(const YAML::Node& n, const std::string& origin, const std::s
     if (!n["frame"].IsScalar() || n["frame"].Scalar().empty()) fail(origin, key + ".frame", "a tf frame name");
     e.frame = n["frame"].Scalar();
   }
-  if (!(e.direction.norm() > 1e-6f)) fail(origin, key + ".direction", "a non-zero vector");
+  if (!(e.direction.stableNorm() > 1e-6f)) fail(origin, key + ".direction", "a non-zero vector");
   if (!(e.radius > 0.0f)) fail(origin, key + ".radius", "a number > 0 [m]");
   if (n["speed"] && n["rate"]) fail(origin, key, "either 'speed' [m/s] or 'rate' [m^3/s], not both");
   if (n["speed"] && !(e.speed > 0.0f)) fail(origin, key + ".speed", "a number > 0 [m/s]");
@@ -349,7 +349,7 @@ Emitter readEmitter(const YAML::Node& n, const std::string& origin, const std::s
   if (!n["speed"] && !n["rate"]) fail(origin, key, "'speed' [m/s] or 'rate' [m^3/s]");
   if (n["volume"] && !(e.volume > 0.0f)) fail(origin, key + ".volume", "a number > 0 [m^3] (leave it out for no limit)");
   if (e.start < 0.0f) fail(origin, key + ".start", "a time >= 0 [s]");
-  e.direction.normalize();
+  e.direction.stableNormalize();
   const std::string err = e.validate();  // what the checks above do not cover (speed bound)
   if (!err.empty()) {  // "field: expected what" -> fail(key.field, "what")
     std::string what = err.substr(err.find(':') + 2);

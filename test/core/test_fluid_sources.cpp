@@ -319,6 +319,27 @@ TEST(FluidSources, BadEmittersDrainsAndBlocksAreNamed) {
   EXPECT_THROW(sources.emitBlock(*solver, b, Eigen::Isometry3f::Identity(), 100000), std::invalid_argument);
   EXPECT_EQ(solver->size(), n0);
   EXPECT_EQ(sources.emitted(), 0u);
+  // A block too large to count its sites says so (it read "about inf lattice sites").
+  b = pbf::FluidBlock();
+  b.min = Eigen::Vector3f::Constant(-3e38f);
+  b.max = Eigen::Vector3f::Constant(3e38f);
+  try {
+    sources.emitBlock(*solver, b, Eigen::Isometry3f::Identity(), 100000);
+    ADD_FAILURE() << "a block of 6e38 m was accepted";
+  } catch (const std::invalid_argument& x) {
+    EXPECT_NE(std::string(x.what()).find("more lattice sites than can be counted"), std::string::npos) << x.what();
+  }
+  EXPECT_EQ(solver->size(), n0);
+
+  // A direction whose plain norm overflows a float is still a direction: it was refused as
+  // "got [0, 0, 0]", the overflowed normalisation rather than what the user wrote.
+  const pbf::Scene far = pbf::loadSceneString(std::string(kTank) +
+                                                  "emitters:\n  - {position: [0.1, 0.1, 0.2], direction: [1.0e38, "
+                                                  "1.0e38, 0], radius: 0.02, speed: 1}\n",
+                                              "far.yaml");
+  ASSERT_EQ(far.emitters.size(), 1u);
+  EXPECT_TRUE(far.emitters[0].direction.isApprox(Eigen::Vector3f(1.0f, 1.0f, 0.0f).normalized()))
+      << far.emitters[0].direction.transpose();
 }
 
 // A jet faster than 8 spacings per step (a fixed step, or the first one): the layers that
