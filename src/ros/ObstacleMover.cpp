@@ -92,7 +92,8 @@ bool poseFromMsg(const geometry_msgs::Pose& msg, Eigen::Isometry3f& pose, std::s
     // A double beyond float range is as unusable as a NaN: the solver works in float.
     if (!std::isfinite(v) || !std::isfinite(static_cast<float>(v))) {
       std::ostringstream m;
-      m << "a pose that is not finite in single precision, as the solver holds it (position [" << p.x << ", " << p.y << ", " << p.z << "], orientation ["
+      m << (std::isfinite(v) ? "a pose beyond float range, which the solver works in" : "non-finite pose")
+        << " (position [" << p.x << ", " << p.y << ", " << p.z << "], orientation ["
         << o.x << ", " << o.y << ", " << o.z << ", " << o.w << "])";
       why = m.str();
       return false;

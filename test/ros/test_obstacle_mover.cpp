@@ -32,6 +32,7 @@ TEST(ObstacleMover, PosesMustBeFiniteRotations) {
   EXPECT_FALSE(pbf_ros::poseFromMsg(pose(nan, 0, 0), t, why));
   EXPECT_NE(why.find("non-finite"), std::string::npos) << why;
   EXPECT_FALSE(pbf_ros::poseFromMsg(pose(0, 0, 1e300), t, why));  // finite, but not as a float
+  EXPECT_NE(why.find("beyond float range"), std::string::npos) << why;  // it read "non-finite"
   EXPECT_FALSE(pbf_ros::poseFromMsg(pose(0, 0, 0, 0, 0, 0, 0), t, why));
   EXPECT_NE(why.find("zero quaternion"), std::string::npos) << why;
 }
