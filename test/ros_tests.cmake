@@ -8,6 +8,7 @@ find_package(rostest REQUIRED)
 catkin_add_gtest(test_ros_units
   test/ros/test_camera_info_conversion.cpp
   test/ros/test_cloud_conversion.cpp
+  test/ros/test_node_params.cpp
   test/ros/test_obstacle_mover.cpp
   test/ros/test_params_conversion.cpp
   test/ros/test_real_time_pacer.cpp

@@ -109,8 +109,17 @@ void FluidNode::stopSimulation() {
 
 void FluidNode::readNodeSettings() {
   pnh_.param<std::string>("scenes_dir", scenes_dir_, defaultScenesDir());
-  pnh_.param<std::string>("world_frame", world_frame_, world_frame_);
-  pnh_.param<std::string>("frame_id", domain_frame_, domain_frame_);
+  std::string warning;
+  auto warn = [&warning] {
+    if (!warning.empty()) ROS_WARN("pbf_node: %s", warning.c_str());
+  };
+  std::string frame;
+  pnh_.param<std::string>("world_frame", frame, world_frame_);
+  world_frame_ = usableFrameId("world_frame", frame, world_frame_, warning);
+  warn();
+  pnh_.param<std::string>("frame_id", frame, domain_frame_);
+  domain_frame_ = usableFrameId("frame_id", frame, domain_frame_, warning);
+  warn();
   publish_clock_ = readBool(pnh_, "publish_clock", publish_clock_);
   paused_ = readBool(pnh_, "start_paused", false);
   bool use_sim_time = false;
@@ -136,14 +145,19 @@ void FluidNode::readNodeSettings() {
     wrench_rate_ = 30.0;
   }
   track_wrenches_ = readBool(pnh_, "track_wrenches", track_wrenches_);
-  double max_lag = 0.1;
-  max_lag = readNumber(pnh_, "max_lag", max_lag);
-  pacer_ = RealTimePacer(max_lag);
+  // Each within a range that means something; outside it, the default, with a warning.
+  auto number = [&](const std::string& name, double fallback, double lo, double hi) {
+    const double value = withinRange(name, readNumber(pnh_, name, fallback), lo, hi, fallback, warning);
+    warn();
+    return value;
+  };
+  pacer_ = RealTimePacer(number("max_lag", 0.1, 1e-3, 3600.0));  // wall s of debt dropped
   HealthThresholds& t = thresholds_;
-  t.rtf_warn_ratio = readNumber(pnh_, "diagnostics/rtf_warn_ratio", t.rtf_warn_ratio);
-  t.rtf_error_ratio = readNumber(pnh_, "diagnostics/rtf_error_ratio", t.rtf_error_ratio);
-  t.density_error_warn = readNumber(pnh_, "diagnostics/density_error_warn", t.density_error_warn);
-  t.density_error_error = readNumber(pnh_, "diagnostics/density_error_error", t.density_error_error);
+  t.rtf_warn_ratio = number("diagnostics/rtf_warn_ratio", t.rtf_warn_ratio, 0.0, 1.0);
+  t.rtf_error_ratio = number("diagnostics/rtf_error_ratio", t.rtf_error_ratio, 0.0, 1.0);
+  // Average density errors (0.05 = 5 %): 0 or less would warn at every step.
+  t.density_error_warn = number("diagnostics/density_error_warn", t.density_error_warn, 1e-6, 10.0);
+  t.density_error_error = number("diagnostics/density_error_error", t.density_error_error, 1e-6, 10.0);
   double& capped = t.capped_steps_warn_fraction;
   capped = readNumber(pnh_, "diagnostics/capped_steps_warn_fraction", capped);
   if (!(capped >= 0.0 && capped <= 1.0)) {

@@ -78,9 +78,20 @@ SurfaceStartup readSurfaceStartup(const ros::NodeHandle& private_nh) {
   std::string default_shaders = ros::package::getPath("pbf_ros");
   if (!default_shaders.empty()) default_shaders += "/shaders";
   private_nh.param<std::string>("shader_dir", s.shader_dir, default_shaders);
-  private_nh.param<std::string>("frame_id", s.domain_frame, s.domain_frame);
-  private_nh.param<std::string>("camera_frame_id", s.camera_frame, s.camera_frame);
-  s.nice = readInteger(private_nh, "render_nice", s.nice);
+  std::string warning, frame;
+  auto warn = [&warning] {
+    if (!warning.empty()) ROS_WARN("pbf_node: %s", warning.c_str());
+  };
+  // ~frame_id's warning is the node's (FluidNode::readNodeSettings), not repeated here.
+  private_nh.param<std::string>("frame_id", frame, s.domain_frame);
+  s.domain_frame = usableFrameId("frame_id", frame, s.domain_frame, warning);
+  private_nh.param<std::string>("camera_frame_id", frame, s.camera_frame);
+  s.camera_frame = usableFrameId("camera_frame_id", frame, s.camera_frame, warning);
+  warn();
+  // Linux adds at most 19 (and lowering it needs a privilege): more was 19 in silence.
+  s.nice = static_cast<int>(withinRange("render_nice", readInteger(private_nh, "render_nice", s.nice), 0, 19,
+                                        s.nice, warning));
+  warn();
   s.idle_priority = readBool(private_nh, "render_idle_priority", s.idle_priority);
   return s;
 }

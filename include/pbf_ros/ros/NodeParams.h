@@ -4,6 +4,7 @@
 // type differs: start_paused:=maybe, or <param name="wrench_rate" value="1e-9"/>, which
 // roslaunch passes on as a string (a helper probe: the node ran at 30 Hz without a word).
 
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +44,33 @@ inline int readInteger(const ros::NodeHandle& nh, const std::string& name, int f
   if (!nh.getParam(name, value)) return fallback;
   if (value.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(value);
   throw std::runtime_error("parameter ~" + name + ": expected an integer, got " + value.toXml());
+}
+
+// The checks below take a value already read and return what to use: the value, or
+// `fallback` with `warning` set (naming ~name) for the caller to log. A start-up setting out
+// of its range was taken in silence: max_lag -1 became 0.1 s, render_nice 100 became 19, a
+// NaN diagnostics threshold never fired, a negative one fired on every error (a helper probe).
+
+// A number in [lo, hi]; NaN is outside.
+inline double withinRange(const std::string& name, double value, double lo, double hi, double fallback,
+                          std::string& warning) {
+  warning.clear();
+  if (value >= lo && value <= hi) return value;
+  std::ostringstream w;
+  w << "~" << name << " " << value << " is not in [" << lo << ", " << hi << "]; using " << fallback;
+  warning = w.str();
+  return fallback;
+}
+
+// A frame id tf can use: not empty (tf2 and rviz cannot look up ""), not starting with '/'
+// (tf2 refuses those).
+inline std::string usableFrameId(const std::string& name, const std::string& value, const std::string& fallback,
+                                 std::string& warning) {
+  warning.clear();
+  if (!value.empty() && value[0] != '/') return value;
+  warning = "~" + name + " '" + value + "' is not a frame id tf can use (" +
+            (value.empty() ? "empty" : "tf2 refuses a leading '/'") + "); using '" + fallback + "'";
+  return fallback;
 }
 
 }  // namespace pbf_ros
