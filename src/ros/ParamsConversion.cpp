@@ -147,6 +147,14 @@ std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& 
     }
     if (!note.str().empty()) notes.push_back(note.str());
   }
+  // An enum of Fluid.cfg that arrives as free text: an unknown filter is refused here, once,
+  // rather than warned about at every later request while the server kept showing it.
+  if (config.render_filter != "narrow_range" && config.render_filter != "bilateral" &&
+      config.render_filter != "none") {
+    notes.push_back("render_filter: '" + config.render_filter +
+                    "' is not narrow_range, bilateral or none; refused, keeping '" + in_force.render_filter + "'");
+    config.render_filter = in_force.render_filter;
+  }
   // gauss_seidel replaces the Jacobi solve that warm_start, chebyshev_rho and scorr_k act on.
   // Whichever side this request turned on wins, with a note (a checkbox in rqt is expected to
   // work); when it turned on both, the solver's own check refuses the request.

@@ -84,6 +84,21 @@ TEST(ParamsConversion, NonFiniteValuesAreRefusedAndTheValueInForceKept) {
   EXPECT_TRUE(mentions(notes, "refused"));
 }
 
+// A filter name that is none of Fluid.cfg's choices (dynparam takes free text) is refused
+// once; it stayed on the server and was warned about at every later request (a probe).
+TEST(ParamsConversion, AnUnknownRenderFilterIsRefusedAndTheFilterInForceKept) {
+  FluidConfig in_force = FluidConfig::__getDefault__();
+  in_force.render_filter = "bilateral";
+  FluidConfig request = in_force;
+  request.render_filter = "gaussian";
+  auto notes = pbf_ros::sanitizeConfig(request, in_force);
+  EXPECT_EQ(request.render_filter, "bilateral");
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0], "render_filter: 'gaussian' is not narrow_range, bilateral or none; refused, keeping 'bilateral'");
+  notes = pbf_ros::sanitizeConfig(request, in_force);  // the next request: nothing to say
+  EXPECT_TRUE(notes.empty());
+}
+
 TEST(ParamsConversion, OutOfRangeValuesAreClampedWithANote) {
   FluidConfig in_force = FluidConfig::__getDefault__();
   FluidConfig request = in_force;

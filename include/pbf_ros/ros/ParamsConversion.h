@@ -29,6 +29,7 @@ pbf::SolverParams configToSolverParams(const FluidConfig& config,
 //  - a value outside the range of config/Fluid.cfg is clamped to it, with a note;
 //  - gauss_seidel with warm_start, chebyshev_rho or scorr_k (Jacobi-only options): the side
 //    `config` turned on relative to `in_force` wins, the other is turned off;
+//  - a render_filter that is none of Fluid.cfg's choices is refused (`in_force`'s is kept);
 //  - min_iterations (or its floor, when 0) > max_iterations raises max_iterations,
 //    min_time_step > max_time_step lowers min_time_step;
 //  each with a note.
