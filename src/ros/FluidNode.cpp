@@ -179,7 +179,7 @@ FluidConfig FluidNode::startupConfig(const pbf::Scene& scene) {
     if (!hasType(value, desc->type)) {
       // getParam would silently keep the default: say so instead.
       ROS_ERROR("pbf_node: parameter ~%s: expected type %s (see config/Fluid.cfg), got %s; "
-                "ignored", desc->name.c_str(), desc->type.c_str(), value.toXml().c_str());
+                "ignored", desc->name.c_str(), desc->type.c_str(), describeParam(value).c_str());
       continue;
     }
     user_param_names_.insert(desc->name);

@@ -1,5 +1,7 @@
 #include "pbf_ros/ros/RobotSource.h"
 
+#include "pbf_ros/ros/NodeParams.h"
+
 #include <stdexcept>
 
 namespace pbf_ros {
@@ -7,9 +9,7 @@ namespace pbf_ros {
 namespace {
 std::runtime_error wrongType(const std::string& name, const std::string& expected,
                              const XmlRpc::XmlRpcValue& value) {
-  XmlRpc::XmlRpcValue copy = value;  // toXml() is not const
-  return std::runtime_error("parameter ~" + name + ": expected " + expected + ", got " +
-                            copy.toXml());
+  return std::runtime_error("parameter ~" + name + ": expected " + expected + ", got " + describeParam(value));
 }
 }  // namespace
 

@@ -201,6 +201,9 @@ class NodeLifecycleTest(unittest.TestCase):
         scene = os.path.join(SCENES, 'coarse_tank.yaml')
         self._refused_at_startup(['_scene:=' + scene, '_start_paused:=maybe'],
                                  '~start_paused: expected true or false', 'maybe')
+        # The value as the user wrote it, not XML-RPC's <value><i4>1</i4></value>.
+        self._refused_at_startup(['_scene:=' + scene, '_start_paused:=1'],
+                                 '~start_paused: expected true or false, got 1 (an integer)')
         # A number of another type (roslaunch passes <param value="1e-9"/> on as a string)
         # kept the default in silence.
         self._refused_at_startup(['_scene:=' + scene, '_wrench_rate:=fast'],

@@ -35,4 +35,10 @@ TEST(NodeParams, AFrameIdTfCannotUseFallsBackWithAWarningNamingIt) {
   EXPECT_NE(warning.find("leading '/'"), std::string::npos) << warning;
 }
 
+TEST(NodeParams, AValueOfTheWrongTypeIsDescribedAsTheUserWroteIt) {
+  EXPECT_EQ(pbf_ros::describeParam(XmlRpc::XmlRpcValue(1)), "1 (an integer)");
+  EXPECT_EQ(pbf_ros::describeParam(XmlRpc::XmlRpcValue(std::string("maybe"))), "'maybe' (a string)");
+  EXPECT_EQ(pbf_ros::describeParam(XmlRpc::XmlRpcValue(true)), "true (a boolean)");
+}
+
 }  // namespace

@@ -13,6 +13,25 @@
 
 namespace pbf_ros {
 
+// A parameter's value as a user wrote it, with its type: "1 (an integer)", not XML-RPC's
+// "<value><i4>1</i4></value>".
+inline std::string describeParam(const XmlRpc::XmlRpcValue& value) {
+  std::ostringstream text;
+  value.write(text);  // not <<: XmlRpcValue converts to several streamable types
+  switch (value.getType()) {
+    case XmlRpc::XmlRpcValue::TypeBoolean: {  // write() gives 1 or 0
+      XmlRpc::XmlRpcValue copy = value;  // the conversion to bool is not const
+      return std::string(static_cast<bool>(copy) ? "true" : "false") + " (a boolean)";
+    }
+    case XmlRpc::XmlRpcValue::TypeInt: return text.str() + " (an integer)";
+    case XmlRpc::XmlRpcValue::TypeDouble: return text.str() + " (a number)";
+    case XmlRpc::XmlRpcValue::TypeString: return "'" + text.str() + "' (a string)";
+    case XmlRpc::XmlRpcValue::TypeArray: return text.str() + " (a list)";
+    case XmlRpc::XmlRpcValue::TypeStruct: return text.str() + " (a map)";
+    default: return text.str();
+  }
+}
+
 // Each returns `fallback` when the parameter is not set and throws std::runtime_error when it
 // is of another type.
 
@@ -22,8 +41,7 @@ inline bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fa
   XmlRpc::XmlRpcValue value;
   if (!nh.getParam(name, value)) return fallback;
   if (value.getType() != XmlRpc::XmlRpcValue::TypeBoolean) {
-    throw std::runtime_error("parameter ~" + name + ": expected true or false, got " +
-                             value.toXml());
+    throw std::runtime_error("parameter ~" + name + ": expected true or false, got " + describeParam(value));
   }
   return static_cast<bool>(value);
 }
@@ -34,7 +52,7 @@ inline double readNumber(const ros::NodeHandle& nh, const std::string& name, dou
   if (!nh.getParam(name, value)) return fallback;
   if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(value);
   if (value.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(value);
-  throw std::runtime_error("parameter ~" + name + ": expected a number, got " + value.toXml() +
+  throw std::runtime_error("parameter ~" + name + ": expected a number, got " + describeParam(value) +
                            " (in a launch file, <param type=\"double\">)");
 }
 
@@ -43,7 +61,7 @@ inline int readInteger(const ros::NodeHandle& nh, const std::string& name, int f
   XmlRpc::XmlRpcValue value;
   if (!nh.getParam(name, value)) return fallback;
   if (value.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(value);
-  throw std::runtime_error("parameter ~" + name + ": expected an integer, got " + value.toXml());
+  throw std::runtime_error("parameter ~" + name + ": expected an integer, got " + describeParam(value));
 }
 
 // The checks below take a value already read and return what to use: the value, or
