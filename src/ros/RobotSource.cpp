@@ -1,8 +1,8 @@
 #include "pbf_ros/ros/RobotSource.h"
 
-#include "pbf_ros/ros/NodeParams.h"
-
 #include <stdexcept>
+
+#include "pbf_ros/ros/NodeParams.h"
 
 namespace pbf_ros {
 
