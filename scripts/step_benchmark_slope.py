@@ -16,20 +16,13 @@ benchmark and thread count it prints the medians' ms per step, ns per particle a
 least-squares slope of log(ms) against log(particles) over every size, per file.
 """
 import json
-import math
 import re
 import sys
 from collections import defaultdict
 
+from plot_bench import loglog_slope  # the scaling study's fit (scripts/plot_bench.py)
+
 NAME = re.compile(r"^(BM_\w+)/kparticles:(\d+)/threads:(\d+)/")
-
-
-def loglog_slope(xs, ys):
-    lx = [math.log(x) for x in xs]
-    ly = [math.log(y) for y in ys]
-    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-    den = sum((a - mx) ** 2 for a in lx)
-    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / den
 
 
 def to_ms(value, unit):

@@ -243,9 +243,10 @@ std::shared_ptr<const SignedDistanceGrid> SignedDistanceGrid::build(
   grid->origin_ = lo - Eigen::Vector3f::Constant(options.band);
   const Eigen::Vector3f extent = hi - lo + Eigen::Vector3f::Constant(2.0f * options.band);
   // Counted in doubles before any int holds them: a mesh scaled to 1e9 m has more nodes on
-  // one axis than an int counts, and the wrapped count passed the memory check below.
+  // one axis than an int counts, and the wrapped count passed the memory check below. (The
+  // quotient stays a float's, as it was, so every grid that fits keeps its nodes.)
   Eigen::Array3d nodes;
-  for (int a = 0; a < 3; ++a) nodes[a] = std::ceil(double(extent[a]) / options.cell) + 1.0;
+  for (int a = 0; a < 3; ++a) nodes[a] = double(std::ceil(extent[a] / options.cell)) + 1.0;
   const double count = nodes.prod();
   // Building needs the values, the closest triangles and the votes: 9 bytes per node.
   if (!(count * 9.0 <= double(options.max_bytes))) {

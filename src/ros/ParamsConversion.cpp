@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "pbf_ros/ros/RenderCameraParams.h"
+
 namespace pbf_ros {
 
 void solverParamsToConfig(const pbf::SolverParams& p, FluidConfig& c) {
@@ -149,8 +151,7 @@ std::vector<std::string> sanitizeConfig(FluidConfig& config, const FluidConfig& 
   }
   // An enum of Fluid.cfg that arrives as free text: an unknown filter is refused here, once,
   // rather than warned about at every later request while the server kept showing it.
-  if (config.render_filter != "narrow_range" && config.render_filter != "bilateral" &&
-      config.render_filter != "none") {
+  if (!knownRenderFilter(config.render_filter)) {
     notes.push_back("render_filter: '" + config.render_filter +
                     "' is not narrow_range, bilateral or none; refused, keeping '" + in_force.render_filter + "'");
     config.render_filter = in_force.render_filter;

@@ -68,6 +68,10 @@ pbf::RenderCamera renderCameraFromConfig(const FluidConfig& config,
   return camera;
 }
 
+bool knownRenderFilter(const std::string& name) {
+  return name == "narrow_range" || name == "bilateral" || name == "none";
+}
+
 pbf::RenderOptions renderOptionsFromConfig(const FluidConfig& config,
                                            const Eigen::AlignedBox3f& container,
                                            std::vector<std::string>* notes) {

@@ -32,6 +32,9 @@ Eigen::Isometry3f frameContainer(const Eigen::AlignedBox3f& container, float ver
 pbf::RenderCamera renderCameraFromConfig(const FluidConfig& config,
                                          const Eigen::AlignedBox3f& container);
 
+// Whether `name` is one of Fluid.cfg's render_filter choices (narrow_range, bilateral, none).
+bool knownRenderFilter(const std::string& name);
+
 // Filter and drawing options. The floor is drawn at the container's bottom. An unknown
 // render_filter falls back to narrow_range with a note in `notes` (if given).
 pbf::RenderOptions renderOptionsFromConfig(const FluidConfig& config,
