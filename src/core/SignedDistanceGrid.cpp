@@ -253,7 +253,7 @@ std::shared_ptr<const SignedDistanceGrid> SignedDistanceGrid::build(
     std::ostringstream err;
     err << "SDF grid of " << nodes.transpose() << " nodes (cell " << options.cell << " m over "
         << extent.transpose() << " m) would need " << count * 9.0 / (1 << 20) << " MiB, over the limit of "
-        << double(options.max_bytes) / (1 << 20) << " MiB: use a larger cell";
+        << double(options.max_bytes) / (1 << 20) << " MiB: use a larger cell or a smaller mesh";
     throw std::invalid_argument(err.str());
   }
   grid->dims_ = nodes.cast<int>().matrix();

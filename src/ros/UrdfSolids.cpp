@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -72,6 +73,16 @@ class MeshGrids {
     if (const std::size_t open = mesh.openEdges(); open > 0)
       e.flaw = "the mesh is not closed (" + std::to_string(open) + " open edges): near its holes " +
                "the solid's inside is a guess, and it may push water that should rest";
+    // A mesh narrower than the grid's cell (half the particle spacing) is a point to the
+    // fluid: it takes part, but a wrong <mesh scale> (millimetres read as metres, 1e-3 twice)
+    // should not pass in silence.
+    if (const float across = meshExtent(mesh); across < options_.cell) {
+      std::ostringstream small;
+      small << "the mesh is " << across << " m across at scale [" << m.scale.x << ", " << m.scale.y
+            << ", " << m.scale.z << "], less than the solids' grid cell of " << options_.cell
+            << " m (half the particle spacing): the fluid hardly feels it (is its scale right?)";
+      e.flaw += (e.flaw.empty() ? "" : "; ") + small.str();
+    }
     // What is left of the robot's budget for grids bounds this one too (9 bytes per node
     // while it is built, 4 kept).
     pbf::SignedDistanceGridOptions options = options_;
@@ -81,12 +92,23 @@ class MeshGrids {
     try {
       e.grid = pbf::SignedDistanceGrid::build(mesh, options);
     } catch (const std::exception& ex) {  // std::invalid_argument; bad_alloc just in case
-      e.error = std::string("cannot bound a solid: ") + ex.what();
+      e.error = std::string("cannot bound a solid: ") + ex.what() +
+                " (the node's cell is half of particle_spacing)";
       if (budget_bounds)
         e.error += " (the robot's mesh grids may take " + mib(max_bytes_in_all_) +
                    " in all, and the meshes before this one took " + mib(kept_bytes_) + ")";
     }
     return e;
+  }
+
+  // The largest side of the box around the mesh's vertices [m].
+  static float meshExtent(const pbf::TriangleMesh& mesh) {
+    Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max()), hi = -lo;
+    for (const Eigen::Vector3f& v : mesh.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+    return mesh.vertices.empty() ? 0.0f : (hi - lo).maxCoeff();
   }
 
   static std::string mib(std::size_t bytes) {

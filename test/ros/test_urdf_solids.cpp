@@ -234,6 +234,23 @@ TEST(UrdfSolids, MeshGridsShareOneMemoryBudget) {
   EXPECT_NE(s.problems[0].find("the robot's mesh grids may take"), std::string::npos) << s.problems[0];
 }
 
+// A mesh narrower than the grid's cell (half the particle spacing) is a point to the fluid.
+// It takes part, as before, but a wrong <mesh scale> is named instead of passing in silence.
+TEST(UrdfSolids, AMeshSmallerThanTheGridCellIsNamedWithItsScale) {
+  const std::string urdf = robot(link("cup", collision(meshGeometry(kCupStl))) +
+                                 link("speck", collision(meshGeometry(kCupStl, "0.001 0.001 0.001"))) +
+                                 "<joint name=\"a\" type=\"fixed\"><parent link=\"cup\"/>"
+                                 "<child link=\"speck\"/></joint>");
+  const pbf_ros::UrdfSolids s = pbf_ros::urdfSolids(urdf, options());
+  ASSERT_EQ(s.solids.size(), 2u) << joined(s.problems);
+  ASSERT_EQ(s.problems.size(), 1u) << joined(s.problems);
+  const std::string& p = s.problems[0];
+  EXPECT_NE(p.find("link 'speck' collision 0"), std::string::npos) << p;
+  EXPECT_NE(p.find("0.0001 m across at scale [0.001, 0.001, 0.001]"), std::string::npos) << p;
+  EXPECT_NE(p.find("grid cell of 0.005 m"), std::string::npos) << p;
+  EXPECT_NE(p.find("it takes part"), std::string::npos) << p;
+}
+
 TEST(UrdfSolids, AColladaMeshIsReadLikeAnStl) {
   // DAE through the same reader (geometric_shapes -> assimp): a closed 10 x 6 x 4 cm box.
   const std::string dae = "file://" + kSource + "/test/data/unit_box.dae";
