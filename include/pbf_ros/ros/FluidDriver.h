@@ -24,7 +24,8 @@ class FluidDriver {
   // when a restarted master has forgotten this node; see FluidNode::watchMaster.
   FluidDriver(ros::NodeHandle nh, ros::NodeHandle private_nh,
               std::function<void()> on_master_lost);
-  // Stops the render thread, then the simulation thread.
+  // Stops the simulation thread, then joins the render thread (its frame in progress gets
+  // the CPU the solver held).
   ~FluidDriver();
   FluidDriver(const FluidDriver&) = delete;
   FluidDriver& operator=(const FluidDriver&) = delete;
