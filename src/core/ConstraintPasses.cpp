@@ -11,6 +11,7 @@
 #include "NeighborSums.h"
 #include "PackedSlots.h"
 #include "PairGeometry.h"
+#include "PullRelaxation.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
 #include "pbf_ros/core/LatticeBoundary.h"
@@ -41,11 +42,9 @@ constexpr float kMaxScorrShift = 0.1f;
 // over-pushes, the fluid expands, and a compression-only pass would leave that expansion to
 // become velocity. So with a warm start the step's summed multiplier is projected instead
 // (kept <= 0: a particle can be pushed, or have its push taken back, never pulled), and the
-// tolerance applies to what is left to correct, compression and over-push alike. A Jacobi
-// pass that takes back in full oscillates (every neighbour takes back too, as every one
-// pushed); taking back half is IISPH's relaxed Jacobi (omega = 0.5, Ihmsen et al. 2014).
-// Pushes stay unrelaxed, as in the cold solve, whose overshoot the projection now absorbs.
-constexpr float kReleaseRelaxation = 0.5f;
+// tolerance applies to what is left to correct, compression and over-push alike. A take-back
+// is a pull, relaxed as every pull is (PullRelaxation.h); pushes stay unrelaxed, as in the
+// cold solve, whose overshoot the projection now absorbs.
 
 }  // namespace
 
@@ -94,7 +93,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
   has_coincident_pair_.resize(n);
   neighbor_count_.resize(n);
   if (walls) wall_gradient_.resize(n);
-  // A warm-started or accelerated solve may take back what it pushed (kReleaseRelaxation).
+  // A warm-started or accelerated solve may take back what it pushed (kPullRelaxation).
   const bool projected = params_.projectedSolve();
   if (projected) complementarity_residual_.resize(n);
   float* const lend = surface_lend_table_ ? surface_lend_.data() : nullptr;
@@ -164,11 +163,11 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       if (unilateral && !projected) c = std::max(c, 0.0f);
       const float denom = sum_grad2 + gx * gx + gy * gy + gz * gz + eps;
       const float step = c == 0.0f || !(denom > 0.0f) ? 0.0f : -relaxation * c / denom;
-      li = step;
+      li = step > 0.0f ? kPullRelaxation * step : step;  // a two-sided constraint's pull
       if (projected) {
         // The step's summed multiplier stays <= 0: push, or take a push back (relaxed).
         const float before = lambda_sum_[i];
-        const float relaxed = step > 0.0f ? kReleaseRelaxation * step : step;
+        const float relaxed = li;
         li = std::min(before + relaxed, 0.0f) - before;
         // What is left to correct: the compression, or the expansion that a push caused.
         complementarity_residual_[i] = c > 0.0f ? c : std::min(-c, -before * denom);

@@ -13,6 +13,7 @@
 #include "PackedSlots.h"
 #include "NeighborSums.h"
 #include "PairGeometry.h"
+#include "PullRelaxation.h"
 #include "pbf_ros/core/Boundaries.h"
 #include "pbf_ros/core/Kernels.h"
 #include "pbf_ros/core/NeighborGrid.h"
@@ -72,6 +73,7 @@ struct PbfSolver::SweepContext {
   float* rows;
   std::size_t row_length;
   float self_density, inv_rho0, grad_scale, eps, omega, rest_density;
+  float pull_omega;  // a two-sided constraint's pulls are not over-relaxed (PullRelaxation.h)
   bool unilateral, walls;
   SolidBoundaries solids;
   ContainerMirror images;
@@ -184,6 +186,7 @@ float PbfSolver::gaussSeidelSweep() {
                            params_.cfmEpsilon(),
                            params_.gauss_seidel_omega * overlap_relaxation_,
                            params_.rest_density,
+                           kPullRelaxation * overlap_relaxation_,
                            params_.unilateral_constraint,
                            params_.wall_density,
                            boundaries(),
@@ -317,7 +320,7 @@ void PbfSolver::projectDensityConstraint(std::size_t i, const SweepContext& swee
   if (sweep.unilateral) c = std::max(c, 0.0f);
   const float denom = sum_grad2 + grad_i.squaredNorm() + sweep.eps;
   if (c == 0.0f || !(denom > 0.0f)) return;
-  const float lambda = -sweep.omega * c / denom;
+  const float lambda = -(c < 0.0f ? sweep.pull_omega : sweep.omega) * c / denom;
   lambda_sum_[i] += lambda;
   if (track_wrenches_) recordGaussSeidelBoundaryPush(i, lambda, sweep);
 

@@ -43,9 +43,11 @@ pbf::SolverParams freeSpaceParams() {
 }
 
 // Scalar transcription of the seed's equations (with the particle mass in eq 7 and 12,
-// which the seed's unit-mass notation leaves out), in double precision. Two departures from
-// the seed, both ours on purpose: the density is summed with the Spiky kernel whose gradient
-// eq 7 uses (Kernels.h), and the mass in the sums is the lattice-normalised m / S. With
+// which the seed's unit-mass notation leaves out), in double precision. Three departures
+// from the seed, all ours on purpose: the density is summed with the Spiky kernel whose
+// gradient eq 7 uses (Kernels.h), the mass in the sums is the lattice-normalised m / S, and
+// a pull (lambda > 0, the two-sided constraint's) is taken at half its step
+// (PullRelaxation.h). With
 // SolverParams::free_surface_lend, eq 2's sum is lent what the free surface misses, read from
 // |grad_i C_i| (FreeSurfaceLend.h; in free space a particle has no images to leave out).
 Points referenceDelta(const Points& x, const pbf::SolverParams& p) {
@@ -77,6 +79,7 @@ Points referenceDelta(const Points& x, const pbf::SolverParams& p) {
     double c = rho / rho0 - 1.0;                            // eq 1
     if (p.unilateral_constraint) c = std::max(c, 0.0);
     lambda[i] = -c / (sum + gi.squaredNorm() + p.cfmEpsilon());  // eq 6
+    if (lambda[i] > 0.0) lambda[i] *= 0.5;                       // a pull, relaxed
   }
   const double dq = p.scorr_delta_q * h;
   Points delta(n);
