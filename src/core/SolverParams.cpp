@@ -86,7 +86,11 @@ std::string SolverParams::validate() const {
     err << "scorr_delta_q must be in (0, 1) (fraction of h; got " << scorr_delta_q << ")";
   if (err.tellp() == 0 && !(finite(xsph_viscosity) && xsph_viscosity >= 0.0f && xsph_viscosity <= 1.0f))
     err << "xsph_viscosity must be in [0, 1] m^2/s (got " << xsph_viscosity << ")";
-  if (err.tellp() == 0) nonNegative("vorticity_epsilon", vorticity_epsilon);
+  if (err.tellp() == 0 && !(finite(vorticity_epsilon) && vorticity_epsilon >= 0.0f &&
+                            vorticity_epsilon <= kMaxVorticityEpsilon))
+    err << "vorticity_epsilon must be in [0, " << kMaxVorticityEpsilon
+        << "] 1/s (beyond, confinement outgrows the fluid's damping and stirs water at rest; got "
+        << vorticity_epsilon << ")";
   if (err.tellp() == 0 && !(finite(wall_friction) && wall_friction >= 0.0f && wall_friction <= 10.0f))
     err << "wall_friction must be in [0, 10] (a friction coefficient; got " << wall_friction << ")";
   if (err.tellp() == 0 && !(finite(neighbor_skin) && neighbor_skin >= 0.0f && neighbor_skin <= 1.0f))

@@ -68,6 +68,8 @@ TEST(Scene, BadFilesNameFileKeyAndExpectation) {
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph: 0.1}", "unknown solver parameter 'solver.xsph'"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {max_iterations: many}", "key 'solver.max_iterations': expected an integer"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph_viscosity: 5}", "xsph_viscosity must be in [0, 1]"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {vorticity_epsilon: 30}",
+       "vorticity_epsilon must be in [0, 5] 1/s (beyond, confinement outgrows"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {chebyshev_rho: 1}", "chebyshev_rho must be in [0, 0.99]"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {warm_start: often}", "key 'solver.warm_start'"},
       {"fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]", "key 'container': expected to be present"},
