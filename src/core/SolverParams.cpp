@@ -82,8 +82,14 @@ std::string SolverParams::validate() const {
         << ", chebyshev_rho " << chebyshev_rho << ", scorr_k " << scorr_k << ")";
   if (err.tellp() == 0 && !(finite(scorr_n) && scorr_n >= 1.0f && scorr_n <= 16.0f))
     err << "scorr_n must be in [1, 16] (got " << scorr_n << ")";
-  if (err.tellp() == 0 && !(finite(scorr_delta_q) && scorr_delta_q > 0.0f && scorr_delta_q < 1.0f))
-    err << "scorr_delta_q must be in (0, 1) (fraction of h; got " << scorr_delta_q << ")";
+  // Beyond the rest spacing d = h / support_radius_factor, s_corr pushes a fluid at rest
+  // apart harder than k: with k = 1 a dam break gained 8 times its potential energy in 0.1 s
+  // at 0.6 h, and ran as without s_corr at 0.5 h (h = 2d).
+  if (err.tellp() == 0 && !(finite(scorr_delta_q) && scorr_delta_q > 0.0f &&
+                            scorr_delta_q <= 1.0f / support_radius_factor))
+    err << "scorr_delta_q must be in (0, " << 1.0f / support_radius_factor
+        << "] (a fraction of h, at most the rest spacing d = h / support_radius_factor: beyond, "
+        << "s_corr pushes water at rest apart; got " << scorr_delta_q << ")";
   if (err.tellp() == 0 && !(finite(xsph_viscosity) && xsph_viscosity >= 0.0f && xsph_viscosity <= 1.0f))
     err << "xsph_viscosity must be in [0, 1] m^2/s (got " << xsph_viscosity << ")";
   if (err.tellp() == 0 && !(finite(vorticity_epsilon) && vorticity_epsilon >= 0.0f &&

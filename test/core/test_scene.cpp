@@ -68,6 +68,8 @@ TEST(Scene, BadFilesNameFileKeyAndExpectation) {
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph: 0.1}", "unknown solver parameter 'solver.xsph'"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {max_iterations: many}", "key 'solver.max_iterations': expected an integer"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {xsph_viscosity: 5}", "xsph_viscosity must be in [0, 1]"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {scorr_delta_q: 0.6}",
+       "scorr_delta_q must be in (0, 0.5] (a fraction of h, at most the rest spacing"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {vorticity_epsilon: 30}",
        "vorticity_epsilon must be in [0, 5] 1/s (beyond, confinement outgrows"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {chebyshev_rho: 1}", "chebyshev_rho must be in [0, 0.99]"},
@@ -80,6 +82,18 @@ TEST(Scene, BadFilesNameFileKeyAndExpectation) {
     EXPECT_NE(err.find("bad.yaml"), std::string::npos) << err;
     EXPECT_NE(err.find(c.must_contain), std::string::npos) << "got: " << err;
   }
+}
+
+// s_corr's |dq| is bounded by the rest spacing, which is a fraction of h that depends on
+// the support: 0.6 h is too far at h = 2d and within the spacing at h = 1.5d.
+TEST(Scene, ScorrDeltaQIsBoundedByTheRestSpacing) {
+  pbf::SolverParams p;
+  p.scorr_delta_q = 0.5f;
+  EXPECT_EQ(p.validate(), "");
+  p.scorr_delta_q = 0.6f;
+  EXPECT_NE(p.validate().find("scorr_delta_q must be in (0, 0.5]"), std::string::npos) << p.validate();
+  p.support_radius_factor = 1.5f;
+  EXPECT_EQ(p.validate(), "");
 }
 
 TEST(Scene, UnknownSceneNameListsTheKnownOnes) {
