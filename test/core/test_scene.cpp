@@ -73,6 +73,12 @@ TEST(Scene, BadFilesNameFileKeyAndExpectation) {
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {vorticity_epsilon: 30}",
        "vorticity_epsilon must be in [0, 5] 1/s (beyond, confinement outgrows"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {chebyshev_rho: 1}", "chebyshev_rho must be in [0, 0.99]"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,0.5]}}]\n"
+              "obstacles: [{sphere: {center: [0.5,0.5,0.8], radius: 0.001}, dynamic: {density: 100000}}]",
+       "floating obstacle 0: its mass 0.000418879 kg is less than one fluid particle's"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,0.5]}}]\n"
+              "obstacles: [{sphere: {center: [0.5,0.5,0.8], radius: 0.1}, dynamic: {density: 500, inertia: [1e-9, 1, 1e-9]}}]",
+       "inertia [1e-09, 1, 1e-09] kg m^2 is no body's"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {warm_start: often}", "key 'solver.warm_start'"},
       {"fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]", "key 'container': expected to be present"},
       {"[1, 2", "not valid YAML"},
