@@ -255,6 +255,29 @@ emitters:
   EXPECT_TRUE(v.isApprox(Eigen::Vector3f(1.0f, 0.0f, 0.0f), 1e-5f)) << v.transpose();
 }
 
+// A nozzle far wider than the tank places only the sites that can land in it (its disc is
+// clipped to the container's reach before the sites are placed), and every one of those:
+// near a corner of the tank, 1.5 m wide, pointing down, its first layer fills each of the
+// 15 x 15 lattice columns of the 0.3 x 0.3 m section.
+TEST(FluidSources, ANozzleWiderThanTheTankFillsEveryColumnOfIt) {
+  pbf::Scene scene = tankScene(R"(
+emitters:
+  - {position: [0.05, 0.05, 0.3], direction: [0, 0, -1], radius: 1.5, speed: 1.0}
+)");
+  auto solver = pbf_test::makeSolver(scene);
+  pbf::FluidSources sources(scene.emitters, scene.drains, solver->size());
+  const std::size_t before = solver->size();
+  while (sources.emitted() == 0) sources.afterStep(*solver, solver->step().dt, 100000);
+  std::set<std::pair<int, int>> columns;
+  for (std::size_t k = before; k < solver->size(); ++k) {
+    const Eigen::Vector3f p = solver->positions()[k];
+    columns.insert({static_cast<int>(std::lround((p.x() - 0.01f) / 0.02f)),
+                    static_cast<int>(std::lround((p.y() - 0.01f) / 0.02f))});
+  }
+  EXPECT_EQ(columns.size(), 225u);
+  EXPECT_EQ(sources.emitted() % 225, 0u) << sources.emitted();
+}
+
 TEST(FluidSources, BadEmittersDrainsAndBlocksAreNamed) {
   auto expectError = [](const std::string& yaml, const std::string& key) {
     try {

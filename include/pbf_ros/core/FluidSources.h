@@ -99,6 +99,10 @@ class FluidSources {
     double travel = 0.0;          // how far the last layer has gone [m]
     std::uint64_t emitted = 0;
     bool placed = false;          // its pose is known (always, without a frame)
+    // The nozzle's lattice sites in its plane, for the spacing they were made at: made once,
+    // not at every step (a nozzle 200 spacings wide has 125 000).
+    std::vector<Eigen::Vector2f> disc;
+    float disc_spacing = 0.0f;
   };
   std::size_t emitLayers(PbfSolver& solver, std::size_t k, double dt, std::size_t max_particles,
                          StepResult& result);
