@@ -12,6 +12,7 @@ catkin_add_gtest(test_ros_units
   test/ros/test_obstacle_mover.cpp
   test/ros/test_params_conversion.cpp
   test/ros/test_real_time_pacer.cpp
+  test/ros/test_ros_clock_jumps.cpp
   test/ros/test_render_camera_params.cpp
   test/ros/test_scene_markers.cpp
   test/ros/test_snapshot_buffer.cpp

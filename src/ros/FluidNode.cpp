@@ -2,6 +2,7 @@
 #include "pbf_ros/ros/FluidNode.h"
 
 #include <omp.h>
+#include <ros/master.h>
 #include <rosgraph_msgs/Clock.h>
 #include <stdexcept>
 #include <visualization_msgs/MarkerArray.h>
@@ -16,6 +17,16 @@
 namespace pbf_ros {
 
 namespace {
+
+// Whether another node publishes /clock now (the master's list of published topics).
+bool clockHasPublisher() {
+  ros::master::V_TopicInfo topics;
+  if (!ros::master::getTopics(topics)) return false;
+  for (const ros::master::TopicInfo& t : topics)
+    if (t.name == "/clock") return true;
+  return false;
+}
+
 // Whether a parameter server value can be read as a Fluid.cfg parameter of `type`.
 bool hasType(const XmlRpc::XmlRpcValue& value, const std::string& type) {
   switch (value.getType()) {
@@ -125,11 +136,15 @@ void FluidNode::readNodeSettings() {
   bool use_sim_time = false;
   ros::param::get("/use_sim_time", use_sim_time);
   if (use_sim_time != publish_clock_) {
-    ROS_WARN("pbf_node: ~publish_clock is %s but /use_sim_time is %s: %s",
-             publish_clock_ ? "true" : "false", use_sim_time ? "true" : "false",
-             publish_clock_ ? "other nodes ignore the simulated /clock this node publishes"
-                            : "every node waits for a /clock nobody publishes (a leftover of "
-                              "an earlier launch? fluid.launch sets it every time)");
+    if (use_sim_time && clockHasPublisher()) {  // a simulator's or a bag's: follow it
+      ROS_INFO("pbf_node: on /use_sim_time, following the /clock another node publishes");
+    } else {
+      ROS_WARN("pbf_node: ~publish_clock is %s but /use_sim_time is %s: %s",
+               publish_clock_ ? "true" : "false", use_sim_time ? "true" : "false",
+               publish_clock_ ? "other nodes ignore the simulated /clock this node publishes"
+                              : "every node waits for a /clock, which nobody publishes yet (a "
+                                "leftover of an earlier launch? fluid.launch sets it every time)");
+    }
   }
   int max_particles = static_cast<int>(max_particles_);
   max_particles = readInteger(pnh_, "max_particles", max_particles);

@@ -58,10 +58,21 @@ void FluidNode::anchorStamps() {
   stamp_anchor_ = std::max(0.0, now.toSec() - sim_clock_);
 }
 
+void FluidNode::followClockJumps() {
+  const ros::Time now = ros::Time::now();
+  const double jump = clock_jumps_.update(now.toSec(), wallNow());
+  if (jump == 0.0) return;
+  anchorStamps();
+  ROS_WARN("pbf_node: ROS time jumped %s by %.6g s (a /clock that restarted, a bag that looped, a "
+           "system clock that was set?): stamps continue from %.6f s",
+           jump < 0.0 ? "back" : "ahead", std::abs(jump), now.toSec());
+}
+
 void FluidNode::runSimulation() {
   while (running_ && ros::ok()) {
     tasks_.runAll();
     if (anchor_awaits_clock_ && !publish_clock_ && !ros::Time::now().isZero()) anchorStamps();
+    if (!publish_clock_ && !anchor_awaits_clock_) followClockJumps();
     const double wall = wallNow();
     if (!paused_ && pacer_.shouldStep(wall, sim_clock_)) {
       stepOnce();

@@ -46,6 +46,7 @@
 #include "pbf_ros/ros/RealTimePacer.h"
 #include "pbf_ros/ros/ReconfigureRecord.h"
 #include "pbf_ros/ros/RobotSource.h"
+#include "pbf_ros/ros/RosClockJumps.h"
 #include "pbf_ros/ros/SimulationTasks.h"
 #include "pbf_ros/ros/SnapshotBuffer.h"
 #include "pbf_ros/ros/SolidWrenchPublishers.h"
@@ -138,6 +139,7 @@ class FluidNode {
   // --- sources and drains (FluidNodeSources.cpp); simulation thread ---
   void applySources(double dt);  // after a step: drains, then emitters (at their tf poses)
   void anchorStamps();   // stamps continue from the ROS time now (start, resume, rebuild)
+  void followClockJumps();  // ... and after ROS time jumps (RosClockJumps.h)
   void setRates(double publish_rate, double stats_rate);
   void updateHealth();
   ros::Time stamp() const;
@@ -204,6 +206,7 @@ class FluidNode {
   // The anchor was taken on simulated time before any /clock came (ROS time 0): it is taken
   // again once one does, or stamps would count from 0 while /clock says otherwise.
   bool anchor_awaits_clock_ = false;
+  RosClockJumps clock_jumps_;  // on the simulation thread
   std::uint64_t state_version_ = 0;    // changes with every step and rebuild
   std::uint64_t cloud_version_ = ~std::uint64_t(0);  // the state last published
   std::atomic<bool> cloud_wanted_{false};  // a new subscriber wants the current state
