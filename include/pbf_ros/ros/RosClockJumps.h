@@ -17,9 +17,6 @@ class RosClockJumps {
   static constexpr double kLeap = 10.0;
   static constexpr double kMinLeap = 1.0;  // [s]
 
-  // Forgets the last sample: the next one is a start (after a re-anchor, a pause).
-  void reset() { seen_ = false; }
-
   // ROS time and steady wall time now [s]. Returns by how much ROS time jumped beyond what
   // the wall clock explains (negative: back), 0 when it did not jump.
   double update(double ros_now, double wall_now) {
