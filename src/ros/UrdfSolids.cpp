@@ -93,7 +93,8 @@ class MeshGrids {
       e.grid = pbf::SignedDistanceGrid::build(mesh, options);
     } catch (const std::exception& ex) {  // std::invalid_argument; bad_alloc just in case
       e.error = std::string("cannot bound a solid: ") + ex.what();
-      if (e.error.find("SDF grid of") != std::string::npos) e.error += " (the node's cell is half of particle_spacing)";
+      if (e.error.find("SDF grid of") != std::string::npos)
+        e.error += " (the node's cell is half of particle_spacing)";
       if (budget_bounds)
         e.error += " (the robot's mesh grids may take " + mib(max_bytes_in_all_) +
                    " in all, and the meshes before this one took " + mib(kept_bytes_) + ")";
