@@ -73,6 +73,9 @@ TEST(Scene, BadFilesNameFileKeyAndExpectation) {
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {vorticity_epsilon: 30}",
        "vorticity_epsilon must be in [0, 5] 1/s (beyond, confinement outgrows"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {chebyshev_rho: 1}", "chebyshev_rho must be in [0, 0.99]"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\n"
+              "solver: {gauss_seidel: false, warm_start: true, unilateral_constraint: false}",
+       "warm_start needs the one-sided constraint"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,0.5]}}]\n"
               "obstacles: [{sphere: {center: [0.5,0.5,0.8], radius: 0.001}, dynamic: {density: 100000}}]",
        "floating obstacle 0: its mass 0.000418879 kg is less than one fluid particle's"},
