@@ -167,8 +167,7 @@ void PbfSolver::computeLambdas(float& avg_error, LambdaPass pass) {
       if (projected) {
         // The step's summed multiplier stays <= 0: push, or take a push back (relaxed).
         const float before = lambda_sum_[i];
-        const float relaxed = li;
-        li = std::min(before + relaxed, 0.0f) - before;
+        li = std::min(before + li, 0.0f) - before;
         // What is left to correct: the compression, or the expansion that a push caused.
         complementarity_residual_[i] = c > 0.0f ? c : std::min(-c, -before * denom);
       }

@@ -231,12 +231,8 @@ std::shared_ptr<const SignedDistanceGrid> SignedDistanceGrid::build(
   if (std::string err = options.validate(); !err.empty()) throw std::invalid_argument(err);
   if (std::string err = mesh.validate(); !err.empty()) throw std::invalid_argument(err);
 
-  Eigen::Vector3f lo = Eigen::Vector3f::Constant(INFINITY), hi = -lo;
-  for (const auto& tri : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      lo = lo.cwiseMin(mesh.vertices[tri[k]]);
-      hi = hi.cwiseMax(mesh.vertices[tri[k]]);
-    }
+  const Eigen::AlignedBox3f bounds = mesh.bounds();
+  const Eigen::Vector3f lo = bounds.min(), hi = bounds.max();
   std::shared_ptr<SignedDistanceGrid> grid(new SignedDistanceGrid());
   grid->cell_ = options.cell;
   grid->band_ = options.band;

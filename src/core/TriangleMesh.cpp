@@ -71,6 +71,13 @@ std::size_t TriangleMesh::openEdges() const {
   return open;
 }
 
+Eigen::AlignedBox3f TriangleMesh::bounds() const {
+  Eigen::AlignedBox3f box;  // empty
+  for (const auto& tri : triangles)
+    for (int k = 0; k < 3; ++k) box.extend(vertices[tri[k]]);
+  return box;
+}
+
 float TriangleMesh::boundingRadius() const {
   float r2 = 0.0f;
   for (const auto& v : vertices) r2 = std::max(r2, v.squaredNorm());

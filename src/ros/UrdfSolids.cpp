@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <iomanip>
-#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -67,6 +66,11 @@ class MeshGrids {
                 "simplified one as collision geometry)";
       return e;
     }
+    // What cannot bound a solid is said here; below, a grid can fail only for its size.
+    if (const std::string bad = mesh.validate(); !bad.empty()) {
+      e.error = "cannot bound a solid: " + bad;
+      return e;
+    }
     // Inside and outside of a mesh that is not closed are guesses near its holes: a solid
     // that stirs water at rest. It still takes part (robot meshes often have small gaps),
     // but the user is told.
@@ -76,7 +80,7 @@ class MeshGrids {
     // A mesh narrower than the grid's cell (half the particle spacing) is a point to the
     // fluid: it takes part, but a wrong <mesh scale> (millimetres read as metres, 1e-3 twice)
     // should not pass in silence.
-    if (const float across = meshExtent(mesh); across < options_.cell) {
+    if (const float across = mesh.bounds().sizes().maxCoeff(); across < options_.cell) {
       std::ostringstream small;
       small << "the mesh is " << across << " m across at scale [" << m.scale.x << ", " << m.scale.y
             << ", " << m.scale.z << "], less than the solids' grid cell of " << options_.cell
@@ -92,24 +96,13 @@ class MeshGrids {
     try {
       e.grid = pbf::SignedDistanceGrid::build(mesh, options);
     } catch (const std::exception& ex) {  // std::invalid_argument; bad_alloc just in case
-      e.error = std::string("cannot bound a solid: ") + ex.what();
-      if (e.error.find("SDF grid of") != std::string::npos)
-        e.error += " (the node's cell is half of particle_spacing)";
+      e.error = std::string("cannot bound a solid: ") + ex.what() +
+                " (the node's cell is half of particle_spacing)";
       if (budget_bounds)
         e.error += " (the robot's mesh grids may take " + mib(max_bytes_in_all_) +
                    " in all, and the meshes before this one took " + mib(kept_bytes_) + ")";
     }
     return e;
-  }
-
-  // The largest side of the box around the mesh's vertices [m].
-  static float meshExtent(const pbf::TriangleMesh& mesh) {
-    Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max()), hi = -lo;
-    for (const Eigen::Vector3f& v : mesh.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-    return mesh.vertices.empty() ? 0.0f : (hi - lo).maxCoeff();
   }
 
   static std::string mib(std::size_t bytes) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "SolverTestUtil.h"
 #include "pbf_ros/core/Boundaries.h"
@@ -32,6 +33,16 @@ double rmsSpeedBetween(pbf::PbfSolver& solver, const pbf::Scene& scene, double f
     if (solver.time() > from) energy += st.kinetic_energy * st.dt, seconds += st.dt;
   }
   return std::sqrt(2.0 * energy / seconds / mass);
+}
+
+// A tank run for 1 s: its rms speed over the last quarter second and its level (the colour
+// gauge's) as a fraction of the level its volume implies.
+std::pair<double, double> restingTank(const pbf::Scene& scene) {
+  auto solver = pbf_test::makeSolver(scene);
+  const double rms = rmsSpeedBetween(*solver, scene, 0.75, 1.0);
+  const double level = pbf::freeSurfaceHeight(solver->positions(), scene.solver.particle_spacing,
+                                              scene.container) / pbf_test::impliedLevel(*solver, scene);
+  return {rms, level};
 }
 
 // SPH density at p of the particles x (brute force, p's own particle included if in x).
@@ -238,10 +249,7 @@ TEST(Calibration, WiderSupportIsRelaxedAndRestsWithEitherSolve) {
     scene.solver.support_radius_factor = 3.0f;
     scene.solver.gauss_seidel = sweeps;
     EXPECT_NEAR(scene.solver.overlapRelaxation(), 0.42, 0.005);
-    auto solver = pbf_test::makeSolver(scene);
-    const double rms = rmsSpeedBetween(*solver, scene, 0.75, 1.0);
-    const double level = pbf::freeSurfaceHeight(solver->positions(), scene.solver.particle_spacing,
-                                                scene.container) / pbf_test::impliedLevel(*solver, scene);
+    const auto [rms, level] = restingTank(scene);
     std::printf("h = 3d, %s: rms speed over 0.75-1 s %.4f m/s, level %.4f of the implied\n",
                 sweeps ? "sweeps" : "Jacobi", rms, level);
     EXPECT_LT(rms, 0.05) << (sweeps ? "sweeps" : "Jacobi");
@@ -261,10 +269,7 @@ TEST(Calibration, TwoSidedConstraintRelaxesItsPullsAndStaysCalm) {
     pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
     scene.solver.unilateral_constraint = false;
     scene.solver.gauss_seidel = sweeps;
-    auto solver = pbf_test::makeSolver(scene);
-    const double rms = rmsSpeedBetween(*solver, scene, 0.75, 1.0);
-    const double level = pbf::freeSurfaceHeight(solver->positions(), scene.solver.particle_spacing,
-                                                scene.container) / pbf_test::impliedLevel(*solver, scene);
+    const auto [rms, level] = restingTank(scene);
     std::printf("two-sided tank, %s: rms speed over 0.75-1 s %.4f m/s, level %.4f of the implied\n",
                 sweeps ? "sweeps" : "Jacobi", rms, level);
     // Full pulls: 8.2 m/s with Jacobi. The two-sided jitters a little more than the

@@ -253,7 +253,7 @@ TEST(SignedDistanceGrid, DegenerateMeshesAreRefusedWithWhatIsWrong) {
   EXPECT_NE(buildError(box, bad).find("use a larger cell"), std::string::npos) << buildError(box, bad);
   // More nodes on one axis than an int counts (a URDF mesh scaled by 1e9, or 1e30 on every
   // axis): refused by the same check, not "cannot create std::vector larger than max_size()".
-  for (const Eigen::Vector3f scale : {Eigen::Vector3f(1, 1, 1e9f), Eigen::Vector3f(1e30f, 1e30f, 1e30f)}) {
+  for (const Eigen::Vector3f& scale : {Eigen::Vector3f(1, 1, 1e9f), Eigen::Vector3f(1e30f, 1e30f, 1e30f)}) {
     pbf::TriangleMesh huge = box;
     for (auto& v : huge.vertices) v = v.cwiseProduct(scale);
     EXPECT_NE(buildError(huge).find("use a larger cell"), std::string::npos) << buildError(huge);

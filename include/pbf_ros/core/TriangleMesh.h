@@ -26,6 +26,8 @@ struct TriangleMesh {
   std::size_t openEdges() const;
   // Largest |vertex|: a sphere about the local origin containing the whole mesh.
   float boundingRadius() const;
+  // The box around the vertices the triangles use (empty without triangles).
+  Eigen::AlignedBox3f bounds() const;
 };
 
 }  // namespace pbf
