@@ -104,7 +104,7 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
            params.particle_spacing, config.real_time_factor, paused_ ? ", paused" : "");
 
   running_ = true;
-  pacer_.restart(wallNow(), sim_clock_);
+  pacer_.restart(pacingNow(), sim_clock_);
   anchorStamps();
   sim_thread_ = std::thread(&FluidNode::runSimulation, this);
   reconfigure_live_ = true;

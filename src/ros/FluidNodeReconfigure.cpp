@@ -119,7 +119,7 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
     if (publishing_change) setRates(publish_rate, stats_rate);
     if (pacing_change) {
       pacer_.setFactor(factor);
-      pacer_.restart(wallNow(), sim_clock_);
+      pacer_.restart(pacingNow(), sim_clock_);
     }
     return "";
   });

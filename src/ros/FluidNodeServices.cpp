@@ -48,7 +48,7 @@ bool FluidNode::onPauseService(std_srvs::SetBool::Request& req,
     const bool was_paused = paused_;
     paused_ = pause;
     if (!pause && was_paused) {
-      pacer_.restart(wallNow(), sim_clock_);  // no debt from the pause
+      pacer_.restart(pacingNow(), sim_clock_);  // no debt from the pause
       anchorStamps();                         // stamps go on from now
       stepped_since_resume_ = false;
     }

@@ -1,6 +1,7 @@
 // The simulation thread: steps the solver at the requested real-time factor, publishes what
 // is due, and runs queued changes between steps. Everything here owns the solver; nothing
 // here waits for a ROS callback.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -38,10 +39,19 @@ double nextDue(double due, double period, double wall) {
 constexpr double kPausedWakeup = 0.05;     // [s] while paused: tasks, /clock, publications
 constexpr double kMinClockPeriod = 0.001;  // /clock at most 1 kHz (as-fast-as-possible runs)
 constexpr double kMaxTfWait = 0.02;        // [wall s] for a frame publisher behind the step
+// On another node's /clock the wall time at which the next step is due is not known (the
+// clock may run at any speed, or stand): look again at least this often [wall s].
+constexpr double kClockPoll = 0.002;
 }  // namespace
 
 double FluidNode::wallNow() const {
   return std::chrono::duration<double>(SteadyClock::now().time_since_epoch()).count();
+}
+
+bool FluidNode::followsRosClock() const { return !publish_clock_ && ros::Time::isSimTime(); }
+
+double FluidNode::pacingNow() const {
+  return followsRosClock() ? ros::Time::now().toSec() : wallNow();
 }
 
 // Every message about a state carries that state's simulated time. With ~publish_clock the
@@ -63,6 +73,7 @@ void FluidNode::followClockJumps() {
   const double jump = clock_jumps_.update(now.toSec(), wallNow());
   if (jump == 0.0) return;
   anchorStamps();
+  if (followsRosClock()) pacer_.restart(now.toSec(), sim_clock_);  // no debt, no wait
   ROS_WARN("pbf_node: ROS time jumped %s by %.6g s (a /clock that restarted, a bag that looped, a "
            "system clock that was set?): stamps continue from %.6f s",
            jump < 0.0 ? "back" : "ahead", std::abs(jump), now.toSec());
@@ -71,10 +82,16 @@ void FluidNode::followClockJumps() {
 void FluidNode::runSimulation() {
   while (running_ && ros::ok()) {
     tasks_.runAll();
-    if (anchor_awaits_clock_ && !publish_clock_ && !ros::Time::now().isZero()) anchorStamps();
+    if (anchor_awaits_clock_ && !publish_clock_ && !ros::Time::now().isZero()) {
+      anchorStamps();
+      if (followsRosClock()) pacer_.restart(pacingNow(), sim_clock_);  // the clock has come
+    }
     if (!publish_clock_ && !anchor_awaits_clock_) followClockJumps();
     const double wall = wallNow();
-    if (!paused_ && pacer_.shouldStep(wall, sim_clock_)) {
+    // On another node's /clock nothing moves until it runs (ROS time 0 until then).
+    const bool clock_awaited = followsRosClock() && anchor_awaits_clock_;
+    const double pace = pacingNow();
+    if (!paused_ && !clock_awaited && pacer_.shouldStep(pace, sim_clock_)) {
       stepOnce();
       publishDue(wallNow(), /*force=*/false);
       continue;
@@ -84,10 +101,14 @@ void FluidNode::runSimulation() {
 
     // Sleep until the next step or publication is due, or until a task arrives.
     double wake = std::min(next_cloud_wall_, next_stats_wall_);
-    if (paused_)
+    if (paused_) {
       wake = std::min(wake, wall + kPausedWakeup);
-    else
+    } else if (followsRosClock()) {
+      const double due = clock_awaited ? kClockPoll : pacer_.wallTimeDue(sim_clock_) - pace;
+      wake = std::min(wake, wall + std::clamp(due, 0.0, kClockPoll));
+    } else {
       wake = std::min(wake, pacer_.wallTimeDue(sim_clock_) + 1e-6);
+    }
     if (snapshots_.requestedRate() > 0.0) wake = std::min(wake, next_snapshot_wall_);
     if (wake > wall) tasks_.waitUntil(toSteady(wake));
   }
@@ -140,11 +161,11 @@ void FluidNode::stepOnce() {
   ++state_version_;
   nan_recoveries_ += static_cast<std::uint32_t>(last_stats_.nan_retries);
   stepped_since_resume_ = true;
-  const double wall = wallNow();
+  const double wall = wallNow(), pace = pacingNow();
   if (paused_) {
-    pacer_.restart(wall, sim_clock_);  // a ~step while paused is not a pacing sample
+    pacer_.restart(pace, sim_clock_);  // a ~step while paused is not a pacing sample
   } else {
-    pacer_.afterStep(wall, sim_clock_);
+    pacer_.afterStep(pace, sim_clock_);
   }
   if (!paused_ && pacer_.factor() > 0.0 && pacer_.settled() &&
       pacer_.achievedFactor() < thresholds_.rtf_warn_ratio * pacer_.factor()) {
@@ -307,7 +328,7 @@ std::string FluidNode::rebuildFluid(const pbf::Scene& scene, const pbf::SolverPa
   last_stats_.particle_count = static_cast<std::uint32_t>(solver_->size());
   nan_recoveries_ = 0;
   stepped_since_resume_ = false;
-  pacer_.restart(wallNow(), sim_clock_);
+  pacer_.restart(pacingNow(), sim_clock_);
   next_cloud_wall_ = next_stats_wall_ = next_snapshot_wall_ = 0.0;  // publish promptly
   announceScene();
   last_floating_tf_wall_ = 0.0;

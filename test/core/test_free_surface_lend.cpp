@@ -118,28 +118,32 @@ TEST(FreeSurfaceLend, FirstStepLendsTheLatticeAsItStartsWhateverTheStep) {
 }
 
 // The shipped tank (d = 0.02 m) solved to 0.03 %: without the lend its top layer sinks
-// into the second's hollows and the free surface (the colour field's half level) falls 0.65 %
-// short of what the volume implies; with it, 0.35 %. What the lend does not hold is the
-// bulk's: the cubic start lattice relaxes into a packing 0.3 % denser at the same kernel sum,
-// in a closed box filled to its lid as well (doc/calibration.md, the start-up).
+// into the second's hollows and the free surface (the colour field's half level) falls
+// 0.55-0.65 % short of what the volume implies; with it, 0.35-0.4 %. What the lend does not
+// hold is the bulk's: the cubic start lattice relaxes into a packing 0.3 % denser at the same
+// kernel sum, in a closed box filled to its lid as well (doc/calibration.md, the start-up).
+// That relaxation is chaotic: which packing forms moves a level by 0.1-0.3 points with any
+// change at float level (a tolerance 3 % different, another CPU's rsqrt), as much as the
+// lend's own effect in a single run (0.17-0.47 points over seven runs on one host). So the
+// lend's effect is taken as the mean over two solves (0.030 and 0.031 %), two packings.
 TEST(FreeSurfaceLend, RestingTankKeepsTheLevelItsVolumeImplies) {
   pbf::Scene scene = pbf_test::loadScene("hydrostatic_tank");
-  scene.solver.density_tolerance = 3e-4f;
-  double level_off = 0.0;
-  for (const bool lend : {false, true}) {
-    scene.solver.free_surface_lend = lend;
-    auto solver = pbf_test::makeSolver(scene);
-    while (solver->time() < 1.5) ASSERT_FALSE(solver->step().failed);
-    const double level = pbf::freeSurfaceHeight(solver->positions(), scene.solver.particle_spacing,
-                                                scene.container) / pbf_test::impliedLevel(*solver, scene);
-    std::printf("shipped tank at 0.03 %%, 1.5 s, lend %s: level %.4f of the implied\n",
-                lend ? "on" : "off", level);
-    if (lend) {
-      EXPECT_NEAR(level, 1.0, 0.005);
-      EXPECT_GT(level - level_off, 0.002) << "the lend is what holds the top layer up";
+  double mean_level[2] = {0.0, 0.0};  // lend off, on
+  for (const float tolerance : {3e-4f, 3.1e-4f}) {
+    scene.solver.density_tolerance = tolerance;
+    for (const bool lend : {false, true}) {
+      scene.solver.free_surface_lend = lend;
+      auto solver = pbf_test::makeSolver(scene);
+      while (solver->time() < 1.5) ASSERT_FALSE(solver->step().failed);
+      const double level = pbf::freeSurfaceHeight(solver->positions(), scene.solver.particle_spacing,
+                                                  scene.container) / pbf_test::impliedLevel(*solver, scene);
+      std::printf("shipped tank at %.3f %%, 1.5 s, lend %s: level %.4f of the implied\n",
+                  100.0 * tolerance, lend ? "on" : "off", level);
+      if (lend) EXPECT_NEAR(level, 1.0, 0.005);
+      mean_level[lend] += 0.5 * level;
     }
-    level_off = level;
   }
+  EXPECT_GT(mean_level[1] - mean_level[0], 0.0015) << "the lend is what holds the top layer up";
 }
 
 // A block dropped onto another buries the lower block's lent top layer: those particles

@@ -144,6 +144,11 @@ class FluidNode {
   void updateHealth();
   ros::Time stamp() const;
   double wallNow() const;
+  // Another node's /clock paces the fluid (/use_sim_time without ~publish_clock): a
+  // simulator paused or slowed holds the fluid with it, as it holds every node's timers.
+  bool followsRosClock() const;
+  // The clock the pacer runs on [s]: ROS time when following /clock, else the wall clock.
+  double pacingNow() const;
 
   // --- diagnostics (spinner thread; FluidNodeDiagnostics.cpp) ---
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);

@@ -1,6 +1,8 @@
 #pragma once
 // Paces simulated time against wall time at a requested real-time factor, and measures the
 // factor actually achieved. Plain (times are passed in, in seconds) so it is unit-tested.
+// "Wall" is whichever clock paces: the node passes another node's /clock when it follows
+// one (FluidNode::pacingNow), and the factor is then simulated seconds per clock second.
 //
 // Sim time follows wall time: the simulation steps while it is behind
 //   target(wall) = anchor_sim + factor * (wall - anchor_wall).
