@@ -64,6 +64,7 @@ FluidNode::FluidNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     ROS_INFO("pbf_node: ignoring the values a previous run left in %s: %s",
              pnh_.getNamespace().c_str(), names.c_str());
   }
+  pnh_.getParam(pnh_.getNamespace(), launch_params_);
   readNodeSettings();
 
   // A bad scene at start-up is fatal: the caller reports it and the node exits non-zero.
@@ -267,9 +268,28 @@ void FluidNode::watchMaster() {
     return;
   }
   master_lost_ = true;
+  // roslaunch sets a node's parameters once, on the master it started with: without them a
+  // respawned node would run the default scene.
+  const bool restored = launch_params_.getType() == XmlRpc::XmlRpcValue::TypeStruct &&
+                        restoreLaunchParams();
   ROS_FATAL("pbf_node: the ROS master restarted and no longer knows this node (no topics, "
-            "services or parameters); shutting down so that it can be started again");
+            "services or parameters); shutting down so that it can be started again%s",
+            restored ? " (its launch parameters are back on the master, for a respawn)" : "");
   if (on_master_lost_) on_master_lost_();
+}
+
+bool FluidNode::restoreLaunchParams() {
+  bool all = true;
+  for (const auto& [name, value] : launch_params_) {
+    if (name == ReconfigureRecord::kKey) continue;  // the last run's books, not a setting
+    // As ros::param::set does, but told whether the master took it.
+    XmlRpc::XmlRpcValue request, response, payload;
+    request[0] = ros::this_node::getName();
+    request[1] = pnh_.getNamespace() + "/" + name;
+    request[2] = value;
+    all = ros::master::execute("setParam", request, response, payload, false) && all;
+  }
+  return all;
 }
 
 void FluidNode::startReconfigure(const FluidConfig& initial) {

@@ -2,14 +2,10 @@
 
 namespace pbf_ros {
 
-namespace {
-constexpr const char* kRecord = "reconfigure_record";
-}  // namespace
-
 ReconfigureRecord::ReconfigureRecord(const ros::NodeHandle& private_nh)
     : nh_(private_nh),
-      written_nh_(private_nh, std::string(kRecord) + "/written"),
-      user_nh_(private_nh, std::string(kRecord) + "/user") {}
+      written_nh_(private_nh, std::string(kKey) + "/written"),
+      user_nh_(private_nh, std::string(kKey) + "/user") {}
 
 std::set<std::string> ReconfigureRecord::forgetPreviousRun() const {
   std::set<std::string> forgotten;
@@ -28,7 +24,7 @@ std::set<std::string> ReconfigureRecord::forgetPreviousRun() const {
 
 void ReconfigureRecord::recordUserSettings(const FluidConfig& config,
                                            const std::set<std::string>& user_names) const {
-  nh_.deleteParam(kRecord);
+  nh_.deleteParam(kKey);
   for (const auto& desc : FluidConfig::__getParamDescriptions__())
     if (user_names.count(desc->name)) desc->toServer(user_nh_, config);
 }

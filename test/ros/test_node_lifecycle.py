@@ -155,6 +155,11 @@ class NodeLifecycleTest(unittest.TestCase):
             code = node.finish(timeout=30)
             self.assertEqual(code, 2, node.output())
             self.assertIn('master restarted', node.output())
+            # Its launch parameters are back, so that a respawn runs the same scene (until
+            # session 41 a respawned node found none and ran the default scene).
+            restarted = rosgraph.Master('/lifecycle_test', master_uri=master.uri)
+            self.assertEqual(restarted.getParam('/fluid/scene'), os.path.join(SCENES, 'coarse_tank.yaml'))
+            self.assertFalse(restarted.hasParam('/fluid/reconfigure_record'))
         finally:
             if node:
                 node.stop()

@@ -181,6 +181,10 @@ class FluidNode {
   std::atomic<bool> master_lost_{false};
   std::function<void()> on_master_lost_;
   ReconfigureRecord record_;  // parameters the user set vs. those a previous run left
+  // The private parameters as launched (without the record): a restarted master has lost
+  // them, and gets them back before the node exits, so that a respawn starts the same scene.
+  XmlRpc::XmlRpcValue launch_params_;
+  bool restoreLaunchParams();  // onto a restarted master; false when a set failed
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<ReconfigureServer> reconfigure_;
 

@@ -23,6 +23,8 @@ namespace pbf_ros {
 
 class ReconfigureRecord {
  public:
+  static constexpr const char* kKey = "reconfigure_record";  // under the private namespace
+
   explicit ReconfigureRecord(const ros::NodeHandle& private_nh);
 
   // Undoes what the previous run wrote (see above). Returns the names it restored or
