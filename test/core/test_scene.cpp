@@ -82,6 +82,9 @@ TEST(Scene, BadFilesNameFileKeyAndExpectation) {
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,0.5]}}]\n"
               "obstacles: [{sphere: {center: [0.5,0.5,0.8], radius: 0.1}, dynamic: {density: 500, inertia: [1e-9, 1, 1e-9]}}]",
        "inertia [1e-09, 1, 1e-09] kg m^2 is no body's"},
+      {base + "fluid: [{box: {min: [0,0,0], max: [1,1,0.5]}}]\n"
+              "obstacles: [{sphere: {center: [0.5,0.5,0.8], radius: 0.1}, dynamic: {mass: 100, inertia: [1e-9, 1e-9, 1e-9]}}]",
+       "inertia [1e-09, 1e-09, 1e-09] kg m^2 is below [0.000335103, 0.000335103, 0.000335103], the solid's at 2 %"},
       {base + "fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]\nsolver: {warm_start: often}", "key 'solver.warm_start'"},
       {"fluid: [{box: {min: [0,0,0], max: [1,1,1]}}]", "key 'container': expected to be present"},
       {"[1, 2", "not valid YAML"},
