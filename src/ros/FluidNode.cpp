@@ -168,6 +168,7 @@ void FluidNode::readNodeSettings() {
     return value;
   };
   pacer_ = RealTimePacer(number("max_lag", 0.1, 1e-3, 3600.0));  // wall s of debt dropped
+  pacer_.setLagByDuration(followsRosClock());  // a coarse clock's tick is no lag
   HealthThresholds& t = thresholds_;
   t.rtf_warn_ratio = number("diagnostics/rtf_warn_ratio", t.rtf_warn_ratio, 0.0, 1.0);
   t.rtf_error_ratio = number("diagnostics/rtf_error_ratio", t.rtf_error_ratio, 0.0, 1.0);
@@ -228,6 +229,10 @@ void FluidNode::advertise() {
   stats_pub_ = pnh_.advertise<SimulationStats>("stats", 10);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  if (followsRosClock()) {
+    clock_sub_ = nh_.subscribe<rosgraph_msgs::Clock>(
+        "/clock", 1, [this](const rosgraph_msgs::Clock::ConstPtr&) { tasks_.wake(); });
+  }
   wrench_pubs_ = std::make_unique<SolidWrenchPublishers>(pnh_, wrench_rate_, track_wrenches_);
 
   reset_srv_ = pnh_.advertiseService("reset", &FluidNode::onResetService, this);

@@ -120,6 +120,9 @@ void FluidNode::onReconfigure(FluidConfig& config, std::uint32_t /*level*/) {
     if (pacing_change) {
       pacer_.setFactor(factor);
       pacer_.restart(pacingNow(), sim_clock_);
+      // Above real time the stamps ran ahead of ROS time; back at or below it they would stay
+      // ahead for good: they go on from now.
+      if (!publish_clock_ && stamp() > ros::Time::now()) anchorStamps();
     }
     return "";
   });

@@ -1,5 +1,6 @@
 #include "pbf_ros/ros/RealTimePacer.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pbf_ros {
@@ -14,6 +15,9 @@ void RealTimePacer::setFactor(double factor) {
 void RealTimePacer::restart(double wall, double sim) {
   anchor_wall_ = wall;
   anchor_sim_ = sim;
+  behind_since_ = -1.0;
+  last_clock_ = wall;
+  last_tick_ = 0.0;
   samples_.clear();
   samples_.emplace_back(wall, sim);
 }
@@ -28,16 +32,31 @@ double RealTimePacer::wallTimeDue(double sim) const {
   return anchor_wall_ + (sim - anchor_sim_) / factor_;
 }
 
-void RealTimePacer::afterStep(double wall, double sim) {
+void RealTimePacer::afterStep(double wall, double sim, double steady_wall) {
   if (factor_ > 0.0) {
     const double target = anchor_sim_ + factor_ * (wall - anchor_wall_);
     const double debt_wall = (target - sim) / factor_;
-    if (debt_wall > max_lag_) {
+    bool drop = debt_wall > max_lag_;
+    double keep = 0.0;  // of the debt, when it is dropped
+    if (lag_by_duration_) {
+      if (wall > last_clock_) last_tick_ = wall - last_clock_;
+      last_clock_ = wall;
+      keep = std::min(target - sim, factor_ * std::min(last_tick_, kMaxTickKept));
+      if (debt_wall <= 0.0) {
+        behind_since_ = -1.0;
+      } else if (behind_since_ < 0.0) {
+        behind_since_ = steady_wall;
+        behind_clock_ = wall;
+      }
+      drop = behind_since_ >= 0.0 && steady_wall - behind_since_ > max_lag_ && wall > behind_clock_;
+    }
+    if (drop) {
+      behind_since_ = -1.0;
       // Behind by more than we are willing to catch up: forget the debt, keep going from
       // here, and remember it so the achieved factor is reported, not hidden.
-      dropped_sim_time_ += target - sim;
+      dropped_sim_time_ += target - sim - keep;
       anchor_wall_ = wall;
-      anchor_sim_ = sim;
+      anchor_sim_ = sim + keep;
       last_drop_wall_ = wall;
     }
   }

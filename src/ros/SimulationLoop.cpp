@@ -39,9 +39,10 @@ double nextDue(double due, double period, double wall) {
 constexpr double kPausedWakeup = 0.05;     // [s] while paused: tasks, /clock, publications
 constexpr double kMinClockPeriod = 0.001;  // /clock at most 1 kHz (as-fast-as-possible runs)
 constexpr double kMaxTfWait = 0.02;        // [wall s] for a frame publisher behind the step
-// On another node's /clock the wall time at which the next step is due is not known (the
-// clock may run at any speed, or stand): look again at least this often [wall s].
-constexpr double kClockPoll = 0.002;
+// On another node's /clock ROS time moves only when a clock message comes, and each wakes
+// the simulation thread (clock_sub_); this bounds the wait should that wake-up come before
+// roscpp has taken the new time [wall s].
+constexpr double kClockPoll = 0.01;
 }  // namespace
 
 double FluidNode::wallNow() const {
@@ -59,13 +60,15 @@ double FluidNode::pacingNow() const {
 // which the simulation (re)started plus the simulated time since: below real time the
 // stamps fall behind the wall clock, but differences between them are simulated seconds.
 ros::Time FluidNode::stamp() const {
-  return publish_clock_ ? ros::Time(sim_clock_) : ros::Time(stamp_anchor_ + sim_clock_);
+  return publish_clock_ ? ros::Time(sim_clock_)
+                        : ros::Time(stamp_anchor_ros_ + (sim_clock_ - stamp_anchor_sim_));
 }
 
 void FluidNode::anchorStamps() {
   const ros::Time now = ros::Time::now();
   anchor_awaits_clock_ = now.isZero();  // use_sim_time, and no /clock yet
-  stamp_anchor_ = std::max(0.0, now.toSec() - sim_clock_);
+  stamp_anchor_ros_ = now.toSec();
+  stamp_anchor_sim_ = sim_clock_;
 }
 
 void FluidNode::followClockJumps() {
@@ -73,10 +76,13 @@ void FluidNode::followClockJumps() {
   const double jump = clock_jumps_.update(now.toSec(), wallNow());
   if (jump == 0.0) return;
   anchorStamps();
-  if (followsRosClock()) pacer_.restart(now.toSec(), sim_clock_);  // no debt, no wait
-  ROS_WARN("pbf_node: ROS time jumped %s by %.6g s (a /clock that restarted, a bag that looped, a "
-           "system clock that was set?): stamps continue from %.6f s",
-           jump < 0.0 ? "back" : "ahead", std::abs(jump), now.toSec());
+  // Back, the fluid would stand until the clock came round again. Ahead is debt, which the
+  // pacer drops once it lasts (a bag at 20x, 2 s a tick, is no leap to skip).
+  if (followsRosClock() && jump < 0.0) pacer_.restart(now.toSec(), sim_clock_);
+  // Throttled: two /clock publishers at once jump back and forth at every message.
+  PBF_WARN_THROTTLE(10.0, "pbf_node: ROS time jumped %s by %.6g s (a /clock that restarted, a bag that "
+                    "looped, a system clock that was set, two /clock publishers?): stamps continue "
+                    "from %.6f s", jump < 0.0 ? "back" : "ahead", std::abs(jump), now.toSec());
 }
 
 void FluidNode::runSimulation() {
@@ -104,8 +110,7 @@ void FluidNode::runSimulation() {
     if (paused_) {
       wake = std::min(wake, wall + kPausedWakeup);
     } else if (followsRosClock()) {
-      const double due = clock_awaited ? kClockPoll : pacer_.wallTimeDue(sim_clock_) - pace;
-      wake = std::min(wake, wall + std::clamp(due, 0.0, kClockPoll));
+      wake = std::min(wake, wall + kClockPoll);  // or the next clock message
     } else {
       wake = std::min(wake, pacer_.wallTimeDue(sim_clock_) + 1e-6);
     }
@@ -165,7 +170,15 @@ void FluidNode::stepOnce() {
   if (paused_) {
     pacer_.restart(pace, sim_clock_);  // a ~step while paused is not a pacing sample
   } else {
-    pacer_.afterStep(pace, sim_clock_);
+    const double dropped = pacer_.droppedSimTime();
+    pacer_.afterStep(pace, sim_clock_, wall);
+    // On another node's clock the fluid keeps that clock's time: what it could not simulate
+    // is skipped, and its stamps go on from the clock (in the wall clock's time they fall
+    // behind, and differences between stamps stay simulated seconds).
+    if (followsRosClock() && pacer_.droppedSimTime() > dropped) {
+      stamp_anchor_ros_ = pace;  // the time now due is the clock's: stamps never lead it
+      stamp_anchor_sim_ = pacer_.targetSim(pace);
+    }
   }
   if (!paused_ && pacer_.factor() > 0.0 && pacer_.settled() &&
       pacer_.achievedFactor() < thresholds_.rtf_warn_ratio * pacer_.factor()) {

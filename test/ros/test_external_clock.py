@@ -2,7 +2,11 @@
 """pbf_node on another node's /clock is paced by it, as every node's timers are: a simulator
 that pauses or slows holds the fluid with it. Until session 41 the fluid was paced by the
 wall clock whatever /clock did, so on a stopped clock its stamps ran on ahead of it (and of
-the poses a simulator publishes at its time)."""
+the poses a simulator publishes at its time). Then a probe found the first version of it
+spinning a core while the clock stood after a restart of the pacing, keeping up with a
+clock that ticks 0.2 s at a time at 0.02 of its speed, and stamping 13 s ahead of a clock
+restarted near 0; each has a phase below."""
+import os
 import threading
 import time
 import unittest
@@ -10,6 +14,7 @@ import unittest
 import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
+from std_srvs.srv import SetBool
 
 from fluid_test_util import stats_listener
 
@@ -18,13 +23,15 @@ STEP = 1.0 / 240.0  # [s] the longest time step (fluid_defaults.yaml's max_time_
 
 
 class ControlledClock:
-    """Publishes /clock every 10 ms of wall time, at a speed that can change (0: stands)."""
+    """Publishes its reading on /clock every `tick` of wall time (10 ms; longer: a coarse
+    clock), running at a speed that can change (0: it stands)."""
 
     def __init__(self):
         self._publisher = rospy.Publisher('/clock', Clock, queue_size=10)
         self._lock = threading.Lock()
         self._origin = (START, time.time())  # the clock read this at this wall time
         self._speed = 1.0
+        self.tick = 0.01  # [wall s]
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run)
         self._thread.start()
@@ -39,14 +46,36 @@ class ControlledClock:
             self._origin = (self._origin[0] + self._speed * (wall - self._origin[1]), wall)
             self._speed = speed
 
+    def set_time(self, clock):
+        with self._lock:
+            self._origin = (clock, time.time())
+
     def _run(self):
         while not self._stop.is_set():
             self._publisher.publish(Clock(clock=rospy.Time.from_sec(self.now())))
-            time.sleep(0.01)
+            time.sleep(self.tick)
 
     def close(self):
         self._stop.set()
         self._thread.join()
+
+
+def node_cpu_seconds():
+    """CPU time [s] pbf_node (named fluid) has used so far, from /proc."""
+    for entry in os.listdir('/proc'):
+        if not entry.isdigit():
+            continue
+        try:
+            with open('/proc/%s/cmdline' % entry, 'rb') as f:
+                args = f.read().split(b'\0')
+            if not any(a.endswith(b'/pbf_node') for a in args) or b'__name:=fluid' not in args:
+                continue
+            with open('/proc/%s/stat' % entry) as f:
+                fields = f.read().rsplit(')', 1)[1].split()
+            return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+        except OSError:
+            continue
+    raise AssertionError('no pbf_node process named fluid')
 
 
 class ExternalClockTest(unittest.TestCase):
@@ -91,6 +120,34 @@ class ExternalClockTest(unittest.TestCase):
                                        'clock speed %g: the fluid fell behind /clock' % speed)
                 else:
                     self.assertLess(fluid, 2 * STEP, 'the fluid moved while /clock stood')
+
+            # The clock stands and the pacing starts again (a resume; likewise a reset, a new
+            # real_time_factor, a clock that arrives standing): the node waits, it does not
+            # spin (the first version did, at 100 % of a core, until the clock moved).
+            clock.set_speed(0.0)
+            time.sleep(0.5)  # the node has the clock's last reading
+            pause = rospy.ServiceProxy('/fluid/pause', SetBool)
+            pause(True)
+            pause(False)
+            cpu = node_cpu_seconds()
+            time.sleep(2.0)
+            print('cpu while standing: %.3f s' % (node_cpu_seconds() - cpu))
+            self.assertLess(node_cpu_seconds() - cpu, 0.6, 'the node spun while /clock stood')
+
+            # A clock that ticks 0.25 s at a time at its speed 1 (a bag played fast, a coarse
+            # simulator): this scene keeps up with it.
+            clock.tick = 0.25
+            clock.set_speed(1.0)
+            fluid, ticked, _ = advance(4.0)
+            self.assertGreater(fluid, 0.8 * ticked - 0.3, 'the fluid fell behind a coarse /clock')
+            clock.tick = 0.01
+
+            # The clock restarts near 0 (a simulator's reset) after the fluid has simulated more
+            # than that: the stamps follow it, not sim_time ahead of it.
+            clock.set_time(1.0)
+            stats.next(timeout=5.0, condition=lambda m: m.header.stamp.to_sec() < START / 2)
+            _, _, lead = advance(1.0)
+            self.assertLessEqual(lead, 2 * STEP, 'stamps ahead of a clock restarted near 0')
         finally:
             if clock:
                 clock.close()

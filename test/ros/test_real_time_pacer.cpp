@@ -1,5 +1,6 @@
 // RealTimePacer: sim time follows wall time; when behind, the debt is dropped and the
 // achieved factor tells the truth.
+#include <cmath>
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -69,6 +70,39 @@ TEST(RealTimePacer, FallingBehindDropsTheDebtAndReportsTheTruth) {
   EXPECT_GT(pacer.droppedSimTime(), 5.0);
   // The debt never grows beyond max_lag: once it can keep up, it paces normally again.
   EXPECT_LE(wall - pacer.wallTimeDue(sim), 0.1 + 0.04);
+}
+
+// On another node's /clock, ticking 0.2 s at a time (a bag played at 20x): each tick is a
+// debt of 0.2 s at once. A simulation that clears it before the next tick keeps up and
+// drops nothing; counted as a debt beyond max_lag (0.1 s) it dropped nearly every tick and
+// reached 0.02 of the clock (a probe, session 41). One that cannot clear it still drops.
+TEST(RealTimePacer, OnACoarseClockATicksDebtIsNoLag) {
+  for (const double step_cost : {0.002, 0.02}) {  // wall s per 10 ms step: 5x, 0.5x
+    RealTimePacer pacer(0.1, 2.0);
+    pacer.setLagByDuration(true);
+    pacer.setFactor(1.0);
+    pacer.restart(0.0, 0.0);
+    // The clock runs at wall speed and reads 0.2 s x the ticks that have come.
+    auto ticks = [](double wall) { return static_cast<long>(std::floor(wall * 5.0 + 1e-9)); };
+    double wall = 0.0, sim = 0.0, clock = 0.0;
+    while (wall < 20.0) {
+      if (!pacer.shouldStep(clock, sim)) {
+        wall = 0.2 * static_cast<double>(ticks(wall) + 1);  // wait for the next tick
+      } else {
+        wall += step_cost;
+        sim += 0.01;
+        pacer.afterStep(0.2 * static_cast<double>(ticks(wall)), sim, wall);
+      }
+      clock = 0.2 * static_cast<double>(ticks(wall));
+    }
+    if (step_cost < 0.01) {
+      EXPECT_DOUBLE_EQ(pacer.droppedSimTime(), 0.0);
+      EXPECT_NEAR(sim, clock, 0.2);
+    } else {
+      EXPECT_GT(pacer.droppedSimTime(), 5.0);
+      EXPECT_NEAR(pacer.achievedFactor(), 0.5, 0.05);
+    }
+  }
 }
 
 TEST(RealTimePacer, RestartForgetsTheWindow) {

@@ -211,7 +211,11 @@ class FluidNode {
   double publish_period_ = 1.0 / 30.0, stats_period_ = 0.1;
   double next_cloud_wall_ = 0.0, next_stats_wall_ = 0.0, next_snapshot_wall_ = 0.0;
   double last_clock_wall_ = 0.0;
-  double stamp_anchor_ = 0.0;          // ROS time [s] of sim_clock_ 0 (without /clock)
+  // Without ~publish_clock a stamp is stamp_anchor_ros_ + (sim_clock_ - stamp_anchor_sim_):
+  // the ROS time [s] at which the simulation (re)started, plus the simulated time since. A
+  // pair, not their difference: a clock restarted near 0 would make that negative.
+  double stamp_anchor_ros_ = 0.0, stamp_anchor_sim_ = 0.0;
+  ros::Subscriber clock_sub_;  // wakes the simulation thread when another node's /clock ticks
   // The anchor was taken on simulated time before any /clock came (ROS time 0): it is taken
   // again once one does, or stamps would count from 0 while /clock says otherwise.
   bool anchor_awaits_clock_ = false;

@@ -9,6 +9,13 @@
 // When it cannot keep up, it does not try to catch up forever: once the debt exceeds
 // max_lag of wall time, the anchor moves to "now" (the debt is dropped) and the dropped
 // time is counted. achievedFactor() then tells the truth about the speed reached.
+// On another node's /clock the debt is counted in clock seconds, and a coarse clock (a bag
+// played at 20x ticks 0.2 s at a time) hands over a tick's worth at once, which is no sign of
+// falling behind: there (setLagByDuration) the debt is dropped only once the simulation has
+// been behind for max_lag of wall time without a break and the clock has ticked on since:
+// a simulation that clears each tick's debt before the next tick keeps up, however coarse.
+// And the latest tick's worth (at most kMaxTickKept) is kept: dropped too, the simulation
+// would idle until the next tick, a quarter of a 0.2 s tick clock's time at half its speed.
 
 #include <cstdint>
 #include <deque>
@@ -35,8 +42,14 @@ class RealTimePacer {
   // Wall time at which `sim` is due (when to wake up); wall itself when factor is 0.
   double wallTimeDue(double sim) const;
 
-  // Records a step that ended at (wall, sim); drops excessive debt.
-  void afterStep(double wall, double sim);
+  // Records a step that ended at (wall, sim); drops excessive debt. `steady_wall` is the
+  // wall clock, for how long the debt has lasted (setLagByDuration); by default `wall`.
+  void afterStep(double wall, double sim) { afterStep(wall, sim, wall); }
+  void afterStep(double wall, double sim, double steady_wall);
+  void setLagByDuration(bool on) { lag_by_duration_ = on; }
+  static constexpr double kMaxTickKept = 1.0;  // [clock s] beyond, a tick is a leap
+  // The simulated time due at `wall` (the pacing clock).
+  double targetSim(double wall) const { return anchor_sim_ + factor_ * (wall - anchor_wall_); }
 
   // Simulated seconds per wall second over the window (0 before two samples).
   double achievedFactor() const;
@@ -56,6 +69,10 @@ class RealTimePacer {
   double anchor_sim_ = 0.0;
   double last_drop_wall_ = -1.0e300;
   double dropped_sim_time_ = 0.0;
+  bool lag_by_duration_ = false;
+  double behind_since_ = -1.0;  // steady wall time the current debt began; < 0: none
+  double behind_clock_ = 0.0;   // the clock's reading then
+  double last_clock_ = 0.0, last_tick_ = 0.0;  // the latest reading, and by how much it moved
   std::deque<std::pair<double, double>> samples_;  // (wall, sim)
 };
 
