@@ -60,8 +60,10 @@ double FluidNode::pacingNow() const {
 // which the simulation (re)started plus the simulated time since: below real time the
 // stamps fall behind the wall clock, but differences between them are simulated seconds.
 ros::Time FluidNode::stamp() const {
+  // Never below 0, which ros::Time refuses by throwing (a drop's kept tick on a clock that
+  // has just started at 0).
   return publish_clock_ ? ros::Time(sim_clock_)
-                        : ros::Time(stamp_anchor_ros_ + (sim_clock_ - stamp_anchor_sim_));
+                        : ros::Time(std::max(0.0, stamp_anchor_ros_ + (sim_clock_ - stamp_anchor_sim_)));
 }
 
 void FluidNode::anchorStamps() {
@@ -173,8 +175,8 @@ void FluidNode::stepOnce() {
     const double dropped = pacer_.droppedSimTime();
     pacer_.afterStep(pace, sim_clock_, wall);
     // On another node's clock the fluid keeps that clock's time: what it could not simulate
-    // is skipped, and its stamps go on from the clock (in the wall clock's time they fall
-    // behind, and differences between stamps stay simulated seconds).
+    // is skipped, and its stamps go on from the clock. (On the wall clock they fall behind
+    // instead, so that differences between stamps stay simulated seconds.)
     if (followsRosClock() && pacer_.droppedSimTime() > dropped) {
       stamp_anchor_ros_ = pace;  // the time now due is the clock's: stamps never lead it
       stamp_anchor_sim_ = pacer_.targetSim(pace);
