@@ -78,9 +78,15 @@ void FluidNode::followClockJumps() {
   const double jump = clock_jumps_.update(now.toSec(), wallNow());
   if (jump == 0.0) return;
   anchorStamps();
-  // Back, the fluid would stand until the clock came round again. Ahead is debt, which the
-  // pacer drops once it lasts (a bag at 20x, 2 s a tick, is no leap to skip).
-  if (followsRosClock() && jump < 0.0) pacer_.restart(now.toSec(), sim_clock_);
+  if (followsRosClock()) {
+    // Back, the fluid would stand until the clock came round again; ahead, it would race to
+    // catch up. It goes on from now, with the leap's worth up to a tick's (kMaxTickKept) still
+    // to simulate: a bag at 20x ticks 2 s at a time, which looks like a leap, and restarted
+    // at each tick it never stepped. Its stamps reach the clock's when that is done.
+    const double kept = jump > 0.0 ? std::min(jump, RealTimePacer::kMaxTickKept) : 0.0;
+    pacer_.restart(now.toSec() - kept, sim_clock_);
+    stamp_anchor_sim_ = pacer_.targetSim(now.toSec());
+  }
   // Throttled: two /clock publishers at once jump back and forth at every message.
   PBF_WARN_THROTTLE(10.0, "pbf_node: ROS time jumped %s by %.6g s (a /clock that restarted, a bag that "
                     "looped, a system clock that was set, two /clock publishers?): stamps continue "
