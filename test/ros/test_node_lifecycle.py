@@ -143,6 +143,12 @@ class NodeLifecycleTest(unittest.TestCase):
             api = rosgraph.Master('/lifecycle_test', master_uri=master.uri)
             wait_for(lambda: any(n == '/fluid/set_parameters' for n, _ in
                                  api.getSystemState()[2]), 30, 'the node to register')
+            # ... and to have started: its spinner answers a service only once start-up is
+            # over. Stopped while start-up still registered a publisher, the master left the
+            # node blocked in roscpp's retries, its watchdog not yet running (a CI run,
+            # session 41).
+            subprocess.run(['rosservice', 'call', '/fluid/pause', 'false'], check=True, timeout=30,
+                           capture_output=True, env=dict(os.environ, ROS_MASTER_URI=master.uri))
             master.stop()
             # The node's watchdog (1 s) notices the master is gone: wait for it to say so, not
             # for a fixed time (a loaded machine may run the watchdog late).
