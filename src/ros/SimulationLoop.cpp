@@ -73,6 +73,11 @@ void FluidNode::anchorStamps() {
   stamp_anchor_sim_ = sim_clock_;
 }
 
+void FluidNode::anchorStampsAtPacerTarget(double clock_now) {
+  stamp_anchor_ros_ = clock_now;
+  stamp_anchor_sim_ = pacer_.targetSim(clock_now);
+}
+
 void FluidNode::followClockJumps() {
   const ros::Time now = ros::Time::now();
   const double jump = clock_jumps_.update(now.toSec(), wallNow());
@@ -85,7 +90,7 @@ void FluidNode::followClockJumps() {
     // at each tick it never stepped. Its stamps reach the clock's when that is done.
     const double kept = jump > 0.0 ? std::min(jump, RealTimePacer::kMaxTickKept) : 0.0;
     pacer_.restart(now.toSec() - kept, sim_clock_);
-    stamp_anchor_sim_ = pacer_.targetSim(now.toSec());
+    anchorStampsAtPacerTarget(now.toSec());
   }
   // Throttled: two /clock publishers at once jump back and forth at every message.
   PBF_WARN_THROTTLE(10.0, "pbf_node: ROS time jumped %s by %.6g s (a /clock that restarted, a bag that "
@@ -183,10 +188,7 @@ void FluidNode::stepOnce() {
     // On another node's clock the fluid keeps that clock's time: what it could not simulate
     // is skipped, and its stamps go on from the clock. (On the wall clock they fall behind
     // instead, so that differences between stamps stay simulated seconds.)
-    if (followsRosClock() && pacer_.droppedSimTime() > dropped) {
-      stamp_anchor_ros_ = pace;  // the time now due is the clock's: stamps never lead it
-      stamp_anchor_sim_ = pacer_.targetSim(pace);
-    }
+    if (followsRosClock() && pacer_.droppedSimTime() > dropped) anchorStampsAtPacerTarget(pace);
   }
   if (!paused_ && pacer_.factor() > 0.0 && pacer_.settled() &&
       pacer_.achievedFactor() < thresholds_.rtf_warn_ratio * pacer_.factor()) {

@@ -1,4 +1,5 @@
 """Helpers shared by the pbf_node rostest nodes."""
+import os
 import struct
 import threading
 import time
@@ -152,3 +153,18 @@ def cloud_ids(cloud):
 def mean(values):
     values = list(values)
     return sum(values) / len(values)
+
+
+def node_pid():
+    """The process of this test's pbf_node (named `fluid`)."""
+    for entry in os.listdir('/proc'):
+        if not entry.isdigit():
+            continue
+        try:
+            with open('/proc/%s/cmdline' % entry, 'rb') as f:
+                args = f.read().split(b'\0')
+        except OSError:
+            continue
+        if any(a.endswith(b'/pbf_node') for a in args) and b'__name:=fluid' in args:
+            return int(entry)
+    raise AssertionError('no pbf_node process named fluid')

@@ -16,7 +16,7 @@ import rostest
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import SetBool
 
-from fluid_test_util import stats_listener
+from fluid_test_util import node_pid, stats_listener
 
 START = 1000.0  # [s] the clock this test publishes
 STEP = 1.0 / 240.0  # [s] the longest time step (fluid_defaults.yaml's max_time_step)
@@ -62,20 +62,9 @@ class ControlledClock:
 
 def node_cpu_seconds():
     """CPU time [s] pbf_node (named fluid) has used so far, from /proc."""
-    for entry in os.listdir('/proc'):
-        if not entry.isdigit():
-            continue
-        try:
-            with open('/proc/%s/cmdline' % entry, 'rb') as f:
-                args = f.read().split(b'\0')
-            if not any(a.endswith(b'/pbf_node') for a in args) or b'__name:=fluid' not in args:
-                continue
-            with open('/proc/%s/stat' % entry) as f:
-                fields = f.read().rsplit(')', 1)[1].split()
-            return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
-        except OSError:
-            continue
-    raise AssertionError('no pbf_node process named fluid')
+    with open('/proc/%d/stat' % node_pid()) as f:
+        fields = f.read().rsplit(')', 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
 
 
 class ExternalClockTest(unittest.TestCase):

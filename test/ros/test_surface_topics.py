@@ -21,7 +21,7 @@ from sensor_msgs.msg import CameraInfo, Image
 from std_srvs.srv import SetBool
 from tf2_msgs.msg import TFMessage
 
-from fluid_test_util import NODE, SIMULATION, Latest, stats_listener
+from fluid_test_util import NODE, SIMULATION, Latest, node_pid, stats_listener
 
 WIDTH, HEIGHT = 160, 120
 FRAME = 'fluid_camera_optical'
@@ -83,21 +83,6 @@ def rotate(q, v):
     ux = (y * v[2] - z * v[1], z * v[0] - x * v[2], x * v[1] - y * v[0])
     uux = (y * ux[2] - z * ux[1], z * ux[0] - x * ux[2], x * ux[1] - y * ux[0])
     return tuple(v[i] + 2.0 * w * ux[i] + 2.0 * uux[i] for i in range(3))
-
-
-def node_pid():
-    """The process of this test's pbf_node (named `fluid`)."""
-    for entry in os.listdir('/proc'):
-        if not entry.isdigit():
-            continue
-        try:
-            with open('/proc/%s/cmdline' % entry, 'rb') as f:
-                args = f.read().split(b'\0')
-        except OSError:
-            continue
-        if any(a.endswith(b'/pbf_node') for a in args) and b'__name:=fluid' in args:
-            return int(entry)
-    raise AssertionError('no pbf_node process named fluid')
 
 
 class SurfaceTopicsTest(unittest.TestCase):

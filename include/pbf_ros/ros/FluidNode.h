@@ -140,6 +140,9 @@ class FluidNode {
   void applySources(double dt);  // after a step: drains, then emitters (at their tf poses)
   void anchorStamps();   // stamps continue from the ROS time now (start, resume, rebuild)
   void followClockJumps();  // ... and after ROS time jumps (RosClockJumps.h)
+  // On another node's /clock: stamps that reach `clock_now` when the simulation reaches the
+  // pacer's target, so they never lead the clock while it catches up.
+  void anchorStampsAtPacerTarget(double clock_now);
   void setRates(double publish_rate, double stats_rate);
   void updateHealth();
   ros::Time stamp() const;
